@@ -1,0 +1,66 @@
+/// @file scene.h
+/// @brief Scene input as flat arrays, and its subdivision into elements (the unknowns).
+#pragma once
+
+#include "radiosity/types.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace radiosity {
+
+/// A polygon soup as flat arrays (views; the caller owns the memory). Units: metres, world space.
+/// Polygon f has corners corner_vertices[face_offsets[f] .. face_offsets[f+1]), counter-clockwise
+/// seen from the side its normal points to (Blender's convention).
+struct SceneInput {
+    const float* positions = nullptr;         ///< vertex_count x 3
+    std::size_t vertex_count = 0;
+    const int32_t* face_offsets = nullptr;    ///< face_count + 1, starts at 0, increasing
+    const int32_t* corner_vertices = nullptr; ///< face_offsets[face_count] vertex indices
+    std::size_t face_count = 0;
+    const float* reflectance = nullptr;       ///< face_count x 3, each in [0, 1)
+    const float* emission = nullptr;          ///< face_count x 3, emitted radiance, >= 0
+    const int32_t* material = nullptr;        ///< face_count ids; corners never blend across ids. May be null.
+};
+
+/// The unknowns of the radiosity system: small planar triangles or quads, each a uniform
+/// emitter and reflector. Elements of one polygon share their grid vertices.
+struct Elements {
+    std::vector<Vec3> vertices;                   ///< element grid vertices, world space
+    std::vector<std::array<int32_t, 4>> corners;  ///< indices into vertices, CCW; [3] == -1 for a triangle
+    std::vector<Vec3> centre;                     ///< centroid (hemi-cubes sit here)
+    std::vector<Vec3> normal;                     ///< unit normal
+    std::vector<float> area;                      ///< square metres
+    std::vector<int32_t> polygon;                 ///< input polygon each element came from
+    std::vector<Rgb> reflectance;                 ///< per element, in [0, 1)
+    std::vector<Rgb> emission;                    ///< emitted radiance per element
+
+    /// Input corner -> element vertex holding the polygon's corner (for writing back colours);
+    /// -1 for corners of skipped (degenerate) polygons.
+    std::vector<int32_t> corner_vertex;
+
+    std::size_t size() const { return centre.size(); }
+    bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
+};
+
+/// Why a polygon was left out.
+enum class Defect : int32_t { ZeroArea = 1, NonFinite = 2, TooFewCorners = 3, BadIndex = 4 };
+
+struct SkippedPolygon {
+    int32_t polygon;
+    Defect defect;
+};
+
+struct BuildResult {
+    Elements elements;
+    std::vector<SkippedPolygon> skipped;  ///< never used silently: callers report these
+};
+
+/// Splits every polygon into elements whose edges are at most `max_edge` metres long
+/// (0 = one element per polygon; n-gons are always split into triangles and quads).
+/// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
+/// reflectance outside [0, 1), negative or non-finite emission), naming the polygon.
+BuildResult build_elements(const SceneInput& input, float max_edge);
+
+}  // namespace radiosity

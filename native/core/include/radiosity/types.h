@@ -1,0 +1,42 @@
+/// @file types.h
+/// @brief Basic types shared by the whole core: vectors, colours, progress reporting, errors.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace radiosity {
+
+using Vec3 = glm::vec3;   ///< positions and directions, metres (float: what Blender stores)
+using Rgb = glm::dvec3;   ///< radiance or reflectance per RGB channel (double: solver precision)
+
+/// What a long-running phase reports. `radiance` is the current per-element solution when the
+/// phase has one (solvers), null otherwise; it is only valid during the callback.
+struct Progress {
+    const char* phase = "";     ///< "form_factors", "solve", ...
+    std::size_t done = 0;       ///< units finished (hemi-cubes, iterations, shots)
+    std::size_t total = 0;      ///< units expected (an upper bound for iterative solvers)
+    double residual = 0.0;      ///< current relative residual, 0 where not applicable
+    const Rgb* radiance = nullptr;
+    std::size_t element_count = 0;
+};
+
+/// Called now and then by long phases, from any thread but never concurrently.
+/// Return false to cancel: the phase then throws `Cancelled`.
+using ProgressFn = std::function<bool(const Progress&)>;
+
+/// Thrown when a progress callback asked to stop.
+struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("cancelled") {}
+};
+
+/// Thrown for input the core cannot use; the message names the offending item.
+struct InputError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
+
+}  // namespace radiosity
