@@ -1,0 +1,11 @@
+/// @file module.cpp
+/// @brief The `_core` extension module: a thin layer over the core, arrays in and arrays out.
+#include "bindings.h"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "Bake Radiosity's native core: hemi-cube form factors and radiosity solvers.";
+    py::register_exception<radiosity::Cancelled>(m, "Cancelled");
+    radiosity::python::bind_bake(m);
+}

@@ -1,0 +1,138 @@
+"""Tests of the `_core` binding: dtypes, shapes, clear errors, progress and cancel.
+
+Run by ctest with the interpreter the module was built for and PYTHONPATH at the staged add-on.
+The numbers are checked against closed forms, not against the core's own output.
+"""
+import math
+import unittest
+
+import numpy as np
+
+import _core
+
+
+def box_arrays(size=1.0, rho=0.5, emitted=1.0):
+    """The six inward-facing sides of a cube, one quad each, uniform rho and emission."""
+    s = size
+    v = np.array([[0, 0, 0], [s, 0, 0], [s, s, 0], [0, s, 0],
+                  [0, 0, s], [s, 0, s], [s, s, s], [0, s, s]], dtype=np.float32)
+    quads = [[0, 1, 2, 3],  # floor, +z
+             [4, 7, 6, 5],  # ceiling, -z
+             [0, 3, 7, 4],  # x = 0, +x
+             [1, 5, 6, 2],  # x = s, -x
+             [0, 4, 5, 1],  # y = 0, +y
+             [3, 2, 6, 7]]  # y = s, -y
+    corners = np.array(quads, dtype=np.int32).ravel()
+    offsets = np.arange(0, 4 * len(quads) + 1, 4, dtype=np.int32)
+    reflectance = np.full((len(quads), 3), rho, dtype=np.float32)
+    emission = np.full((len(quads), 3), emitted, dtype=np.float32)
+    return v, offsets, corners, reflectance, emission
+
+
+class FurnaceTest(unittest.TestCase):
+    def test_closed_box_gives_emission_over_one_minus_rho(self):
+        rho, emitted = 0.6, 2.0
+        result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
+                            tolerance=1e-7)
+        expected = emitted / (1.0 - rho)
+        np.testing.assert_allclose(result["element_radiance"], expected, rtol=1e-4)
+        np.testing.assert_allclose(result["corner_radiance"], expected, rtol=1e-4)
+        self.assertTrue(result["converged"])
+
+    def test_every_method_agrees(self):
+        arrays = box_arrays(rho=0.5, emitted=1.0)
+        for method in ("gauss_seidel", "jacobi", "progressive"):
+            with self.subTest(method=method):
+                result = _core.bake(*arrays, element_size=0.5, resolution=32, method=method, tolerance=1e-8)
+                np.testing.assert_allclose(result["element_radiance"], 2.0, rtol=1e-5)
+
+
+class OutputShapesTest(unittest.TestCase):
+    def test_dtypes_and_shapes(self):
+        arrays = box_arrays()
+        result = _core.bake(*arrays, element_size=0.5, resolution=16)
+        elements = result["elements"]
+        self.assertEqual(elements, 6 * 4)
+        self.assertEqual(result["corner_radiance"].shape, (24, 3))
+        self.assertEqual(result["corner_radiance"].dtype, np.float32)
+        self.assertEqual(result["element_radiance"].shape, (elements, 3))
+        self.assertEqual(result["element_corners"].shape, (elements, 4))
+        self.assertEqual(result["element_corners"].dtype, np.int32)
+        self.assertEqual(result["element_corner_radiance"].shape, (elements, 4, 3))
+        self.assertEqual(result["element_polygon"].shape, (elements,))
+        self.assertAlmostEqual(float(result["element_area"].sum()), 6.0, places=5)
+        self.assertEqual(set(result["seconds"]), {"elements", "form_factors", "solve", "interpolate"})
+
+    def test_float64_and_list_input_is_accepted(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        result = _core.bake(v.astype(np.float64), offsets.tolist(), corners.astype(np.int64),
+                            reflectance.astype(np.float64), emission, resolution=16)
+        self.assertEqual(result["corner_radiance"].shape, (24, 3))
+
+
+class BadInputTest(unittest.TestCase):
+    def test_wrong_shape_names_the_array(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        with self.assertRaisesRegex(ValueError, "positions must have shape"):
+            _core.bake(v[:, :2], offsets, corners, reflectance, emission)
+        with self.assertRaisesRegex(ValueError, "reflectance must have shape"):
+            _core.bake(v, offsets, corners, reflectance[:3], emission)
+
+    def test_reflectance_of_one_names_the_polygon(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        reflectance[4] = 1.0
+        with self.assertRaisesRegex(ValueError, "4"):
+            _core.bake(v, offsets, corners, reflectance, emission)
+
+    def test_nan_polygon_is_reported_not_used(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        v = np.vstack([v, [[0, 0, 0], [math.nan, 0, 0], [0, 1, 0]]]).astype(np.float32)
+        corners = np.concatenate([corners, [8, 9, 10]]).astype(np.int32)
+        offsets = np.append(offsets, offsets[-1] + 3).astype(np.int32)
+        reflectance = np.vstack([reflectance, [[0.5, 0.5, 0.5]]]).astype(np.float32)
+        emission = np.vstack([emission, [[0, 0, 0]]]).astype(np.float32)
+        result = _core.bake(v, offsets, corners, reflectance, emission, resolution=16)
+        self.assertEqual([p for p, _ in result["skipped"]], [6])
+        self.assertTrue(np.isfinite(result["corner_radiance"]).all())
+
+    def test_unknown_method(self):
+        with self.assertRaisesRegex(ValueError, "method"):
+            _core.bake(*box_arrays(), method="magic")
+
+
+class ProgressTest(unittest.TestCase):
+    def test_progress_reports_phases_and_cancel_stops(self):
+        phases = []
+
+        def stop_in_solve(info):
+            phases.append(info["phase"])
+            return info["phase"] != "solve"
+
+        with self.assertRaises(_core.Cancelled):
+            _core.bake(*box_arrays(), element_size=0.1, resolution=16, tolerance=1e-9,
+                       progress=stop_in_solve)
+        self.assertIn("form_factors", phases)
+        self.assertEqual(phases[-1], "solve")
+
+    def test_progressive_preview_brightens(self):
+        means = []
+
+        def record(info):
+            if info["radiance"] is not None:
+                means.append(float(info["radiance"].mean()))
+
+        _core.bake(*box_arrays(), element_size=0.25, resolution=16, method="progressive",
+                   tolerance=1e-6, progress=record)
+        self.assertGreater(len(means), 2)
+        self.assertTrue(all(b >= a - 1e-9 for a, b in zip(means, means[1:])))
+
+    def test_exception_in_callback_reaches_the_caller(self):
+        def fail(info):
+            raise KeyError("from the callback")
+
+        with self.assertRaisesRegex(KeyError, "from the callback"):
+            _core.bake(*box_arrays(), element_size=0.25, resolution=16, progress=fail)
+
+
+if __name__ == "__main__":
+    unittest.main()
