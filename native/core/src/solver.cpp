@@ -1,0 +1,92 @@
+/// @file solver.cpp
+/// @brief solve() dispatch, the relative residual, and the helpers all solvers share.
+#include "solver_detail.h"
+
+#include <chrono>
+#include <limits>
+#include <string>
+
+namespace radiosity {
+namespace detail {
+
+double emitted_norm(const Elements& elements) {
+    double norm = 0.0;
+    for (std::size_t i = 0; i < elements.size(); ++i) norm += weighted_l1(elements.area[i], elements.emission[i]);
+    return norm;
+}
+
+Gathered gather(const SparseRow& row, int32_t i, const std::vector<Rgb>& radiance) {
+    Gathered g;
+    for (std::size_t k = 0; k < row.col.size(); ++k) {
+        const int32_t j = row.col[k];
+        const double f = row.val[k];
+        g.sum += f * radiance[j];
+        if (j == i) g.self = f;
+    }
+    return g;
+}
+
+void report(const ProgressFn& progress, std::size_t done, std::size_t total, double residual,
+            const std::vector<Rgb>& radiance) {
+    if (!progress) return;
+    Progress p;
+    p.phase = "solve";
+    p.done = done;
+    p.total = total;
+    p.residual = residual;
+    p.radiance = radiance.data();
+    p.element_count = radiance.size();
+    if (!progress(p)) throw Cancelled();
+}
+
+void DivergenceGuard::check(double residual) {
+    ++sweeps_;
+    if (!std::isfinite(residual))
+        throw std::runtime_error(std::string(method_) + " diverged: the residual is not finite after sweep " +
+                                 std::to_string(sweeps_) +
+                                 " (form-factor rows summing above 1 with reflectance near 1?)");
+    if (first_ < 0.0) first_ = residual;
+    growth_ = residual > previous_ && sweeps_ > 1 ? growth_ + 1 : 0;
+    previous_ = residual;
+    if (growth_ >= growth_limit && residual > first_)
+        throw std::runtime_error(std::string(method_) + " diverged: the relative residual grew for " +
+                                 std::to_string(growth_) + " sweeps in a row to " + std::to_string(residual) +
+                                 " (first " + std::to_string(first_) +
+                                 "); form-factor rows summing above 1 with reflectance near 1?");
+}
+
+}  // namespace detail
+
+SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings& settings,
+                  const ProgressFn& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    const double emitted = detail::emitted_norm(elements);
+    SolveResult result;
+    if (emitted == 0.0) {
+        // Nothing emits: L = 0 solves the system exactly.
+        result.radiance.assign(elements.size(), Rgb(0.0));
+        result.converged = true;
+    } else if (settings.method == Method::Progressive) {
+        result = detail::solve_progressive(elements, rows, settings, progress, emitted);
+    } else {
+        result = detail::solve_sweeps(elements, rows, settings, progress, emitted);
+    }
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+double relative_residual(const Elements& elements, RowSource& rows, const std::vector<Rgb>& radiance) {
+    SparseRow row;
+    double residual = 0.0;
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+        rows.row(static_cast<int32_t>(i), row);
+        const detail::Gathered g = detail::gather(row, static_cast<int32_t>(i), radiance);
+        residual += detail::weighted_l1(elements.area[i],
+                                        elements.emission[i] + elements.reflectance[i] * g.sum - radiance[i]);
+    }
+    const double emitted = detail::emitted_norm(elements);
+    if (emitted == 0.0) return residual == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+    return residual / emitted;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,156 @@
+/// @file solver_progressive.cpp
+/// @brief Progressive refinement (seed 23.6): shoot the unshot radiance U_i of the element with the
+/// largest power A_i (U_r + U_g + U_b), one row of F at a time, so memory stays O(n).
+///
+/// Shooting row i uses reciprocity, dL_j = rho_j F_ij (A_i / A_j) U_i, so the system solved is
+/// L = E + rho G L with G_ji = F_ij A_i / A_j (G = F when the rows are reciprocal).
+///
+/// Residual, exactly: with L = U = E at the start, every shot keeps r = E - (I - rho G) L = rho G U
+/// (shooting u from i adds rho G e_i u to L and moves u from U_i to rho G e_i u). U >= 0, so
+///   |r| = sum_j A_j sum_i rho_j G_ji U_i = sum_i A_i U_i . s_i,   s_i = sum_j rho_j F_ij,
+/// a sum over row i alone. s_i is exact once row i has been rendered; before that we use the bound
+/// s_i <= max_j rho_j (per channel), valid for rows summing to at most 1 (hemi-cube rows do). The
+/// reported residual is therefore an upper bound until every element holding unshot radiance has
+/// shot once, and exact afterwards.
+#include "solver_detail.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+
+namespace radiosity::detail {
+namespace {
+
+/// Tournament tree over n keys: the largest key's index in O(1), a key update in O(log n).
+class MaxTree {
+public:
+    explicit MaxTree(const std::vector<double>& keys) : key_(keys) {
+        while (leaves_ < key_.size()) leaves_ *= 2;
+        node_.assign(2 * leaves_, -1);
+        for (std::size_t i = 0; i < key_.size(); ++i) node_[leaves_ + i] = static_cast<int32_t>(i);
+        for (std::size_t p = leaves_ - 1; p >= 1; --p) node_[p] = winner(node_[2 * p], node_[2 * p + 1]);
+    }
+    int32_t top() const { return node_[1]; }
+    double key(int32_t i) const { return key_[i]; }
+    void set(int32_t i, double key) {
+        key_[i] = key;
+        for (std::size_t p = (leaves_ + i) / 2; p >= 1; p /= 2) node_[p] = winner(node_[2 * p], node_[2 * p + 1]);
+    }
+
+private:
+    int32_t winner(int32_t a, int32_t b) const {
+        if (a < 0) return b;
+        if (b < 0) return a;
+        return key_[b] > key_[a] ? b : a;
+    }
+    std::vector<double> key_;
+    std::size_t leaves_ = 1;
+    std::vector<int32_t> node_;  // node_[1] is the root; leaves at leaves_ + i
+};
+
+double channel_sum(const Rgb& v) { return v.r + v.g + v.b; }
+
+/// Unshot power sum_i A_i U_i . s_i (unnormalised residual).
+double unshot_residual(const Elements& elements, const std::vector<Rgb>& U, const std::vector<Rgb>& s) {
+    double r = 0.0;
+    for (std::size_t i = 0; i < U.size(); ++i) r += elements.area[i] * glm::dot(U[i], s[i]);
+    return r;
+}
+
+/// L plus the ambient term of Cohen et al. 1988: rho_i (1 / (1 - rho_avg)) (sum A U / sum A).
+void ambient_preview(const Elements& elements, const std::vector<Rgb>& L, const std::vector<Rgb>& U,
+                     std::vector<Rgb>& preview) {
+    double area = 0.0;
+    Rgb rho_area(0.0), unshot_area(0.0);
+    for (std::size_t i = 0; i < L.size(); ++i) {
+        const double A_i = elements.area[i];
+        area += A_i;
+        rho_area += A_i * elements.reflectance[i];
+        unshot_area += A_i * U[i];
+    }
+    const Rgb ambient = (unshot_area / area) / (1.0 - rho_area / area);
+    preview.resize(L.size());
+    for (std::size_t i = 0; i < L.size(); ++i) preview[i] = L[i] + elements.reflectance[i] * ambient;
+}
+
+}  // namespace
+
+SolveResult solve_progressive(const Elements& elements, RowSource& rows, const SolveSettings& settings,
+                              const ProgressFn& progress, double emitted) {
+    const std::size_t n = elements.size();
+    const std::size_t cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0)) * n;
+    const std::size_t report_every = std::max<std::size_t>(1, n / 100);
+    const double tolerance = settings.tolerance * emitted;
+    DivergenceGuard guard("progressive refinement");
+
+    Rgb rho_max(0.0);
+    for (const Rgb& rho : elements.reflectance) rho_max = glm::max(rho_max, rho);
+
+    SolveResult result;
+    std::vector<Rgb> L = elements.emission;
+    std::vector<Rgb> U = elements.emission;
+    std::vector<Rgb> s(n, rho_max);  // bound until the element's row is known
+    std::vector<double> power(n);
+    for (std::size_t i = 0; i < n; ++i) power[i] = elements.area[i] * channel_sum(U[i]);
+    MaxTree shooter(power);
+    double residual = unshot_residual(elements, U, s);  // kept up to date shot by shot
+    std::vector<Rgb> preview;
+    SparseRow row;
+
+    auto record = [&] {  // resynchronise the running sum (no drift) and log the sweep
+        residual = unshot_residual(elements, U, s);
+        result.residual_history.push_back(residual / emitted);
+        guard.check(residual / emitted);
+    };
+    std::size_t shots = 0;
+    while (true) {
+        if (residual <= tolerance) {
+            residual = unshot_residual(elements, U, s);
+            if (residual <= tolerance) {
+                result.converged = true;
+                break;
+            }
+        }
+        if (shots == cap) break;
+        const int32_t i = shooter.top();
+        if (shooter.key(i) <= 0.0) {  // nothing left to shoot: r = rho G U = 0
+            residual = 0.0;
+            result.converged = true;
+            break;
+        }
+        const Rgb u = U[i];
+        const double A_i = elements.area[i];
+        residual -= A_i * glm::dot(u, s[i]);
+        U[i] = Rgb(0.0);
+        shooter.set(i, 0.0);
+
+        rows.row(i, row);
+        s[i] = Rgb(0.0);
+        for (std::size_t k = 0; k < row.col.size(); ++k) s[i] += double(row.val[k]) * elements.reflectance[row.col[k]];
+        for (std::size_t k = 0; k < row.col.size(); ++k) {
+            const int32_t j = row.col[k];
+            const double A_j = elements.area[j];
+            const Rgb dL = elements.reflectance[j] * (double(row.val[k]) * A_i / A_j) * u;
+            L[j] += dL;
+            U[j] += dL;
+            residual += A_j * glm::dot(dL, s[j]);
+            shooter.set(j, A_j * channel_sum(U[j]));
+        }
+        ++shots;
+        if (!std::isfinite(residual)) guard.check(residual);
+        if (shots % n == 0) record();
+        if (shots % report_every == 0 && progress) {
+            if (settings.ambient) ambient_preview(elements, L, U, preview);
+            report(progress, shots, cap, residual / emitted, settings.ambient ? preview : L);
+        }
+    }
+    if (shots % n != 0) record();  // the history ends with the returned residual
+    result.residual = residual / emitted;
+    result.shots = shots;
+    result.iterations = static_cast<int>((shots + n - 1) / n);
+    result.radiance = std::move(L);
+    return result;
+}
+
+}  // namespace radiosity::detail
