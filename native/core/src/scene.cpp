@@ -1,0 +1,279 @@
+/// @file scene.cpp
+/// @brief build_elements: validates the input arrays, splits n-gons and subdivides polygons into elements.
+///
+/// Corner indices out of range are a defect of one polygon, not of the arrays as a whole: such a
+/// polygon is skipped and reported as Defect::BadIndex, like a degenerate one.
+
+#include "radiosity/scene.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace radiosity {
+namespace {
+
+using DVec3 = glm::dvec3;
+
+[[noreturn]] void fail(std::size_t polygon, const std::string& what) {
+    throw InputError("polygon " + std::to_string(polygon) + ": " + what);
+}
+
+void validate_arrays(const SceneInput& in) {
+    if (in.face_count == 0) return;
+    if (!in.face_offsets || !in.corner_vertices || !in.reflectance || !in.emission || (!in.positions && in.vertex_count))
+        throw InputError("scene arrays: a required array is null");
+    if (in.face_offsets[0] != 0) fail(0, "face offsets must start at 0");
+    for (std::size_t f = 0; f < in.face_count; ++f) {
+        if (in.face_offsets[f + 1] < in.face_offsets[f]) fail(f, "face offsets decrease");
+        for (int c = 0; c < 3; ++c) {
+            const float rho = in.reflectance[3 * f + c];
+            if (!(rho >= 0.0f && rho < 1.0f)) fail(f, "reflectance " + std::to_string(rho) + " outside [0, 1)");
+            const float emitted = in.emission[3 * f + c];
+            if (!(emitted >= 0.0f && std::isfinite(emitted)))
+                fail(f, "emission " + std::to_string(emitted) + " negative or not finite");
+        }
+    }
+}
+
+/// Number of segments an edge of this length is cut into so that each is at most max_edge.
+int segments(double length, float max_edge) {
+    if (max_edge <= 0.0f) return 1;
+    // The small slack keeps an edge of exactly k * max_edge at k segments despite rounding.
+    return std::max(1, static_cast<int>(std::ceil(length / max_edge * (1.0 - 1e-6))));
+}
+
+/// Twice the area vector of a polygon (Newell's method): its direction is the normal.
+DVec3 newell(const std::vector<DVec3>& p) {
+    DVec3 n(0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) n += glm::cross(p[i], p[(i + 1) % p.size()]);
+    return n;
+}
+
+/// Ear clipping in the polygon's plane; handles concave simple polygons. Triangles are CCW about `normal`.
+std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const DVec3& normal) {
+    std::vector<int> ring(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) ring[i] = static_cast<int>(i);
+    auto convex = [&](int a, int b, int c) { return glm::dot(glm::cross(p[b] - p[a], p[c] - p[b]), normal) > 0.0; };
+    auto inside = [&](int q, int a, int b, int c) {
+        return glm::dot(glm::cross(p[b] - p[a], p[q] - p[a]), normal) >= 0.0 &&
+               glm::dot(glm::cross(p[c] - p[b], p[q] - p[b]), normal) >= 0.0 &&
+               glm::dot(glm::cross(p[a] - p[c], p[q] - p[c]), normal) >= 0.0;
+    };
+    std::vector<std::array<int, 3>> triangles;
+    while (ring.size() > 3) {
+        const std::size_t m = ring.size();
+        std::size_t ear = m;
+        for (std::size_t i = 0; i < m && ear == m; ++i) {
+            const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+            if (!convex(a, b, c)) continue;
+            bool empty = true;
+            for (int q : ring)
+                if (q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && inside(q, a, b, c)) {
+                    empty = false;
+                    break;
+                }
+            if (empty) ear = i;
+        }
+        if (ear == m) ear = 0;  // self-intersecting outline: no true ear exists, cut any corner
+        triangles.push_back({ring[(ear + m - 1) % m], ring[ear], ring[(ear + 1) % m]});
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ear));
+    }
+    triangles.push_back({ring[0], ring[1], ring[2]});
+    return triangles;
+}
+
+/// Builds the elements of one polygon. Vertices on a polygon edge or diagonal are shared by
+/// the elements on both sides of it; they are placed by a lerp that gives bit-identical points
+/// from either end, so that coincident edges of neighbouring polygons match exactly too.
+class PolygonBuilder {
+public:
+    PolygonBuilder(Elements& out, const std::vector<DVec3>& p, int32_t polygon, const Rgb& rho, const Rgb& emitted)
+        : out_(out), p_(p), polygon_(polygon), rho_(rho), emitted_(emitted) {
+        for (const DVec3& q : p) corner_.push_back(add_vertex(q));
+    }
+
+    int32_t corner(int i) const { return corner_[i]; }
+
+    /// Regular subdivision into n^2 triangles (a, b, c local corner indices).
+    void triangle(int a, int b, int c, int n) {
+        // grid(i, j): the point a + i/n (b - a) + j/n (c - a), i + j <= n.
+        std::vector<int32_t> grid((n + 1) * (n + 1), -1);
+        auto at = [&](int i, int j) -> int32_t& { return grid[i * (n + 1) + j]; };
+        const auto ab = edge(a, b, n), ac = edge(a, c, n), bc = edge(b, c, n);
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; i + j <= n; ++j) {
+                if (j == 0) at(i, j) = ab[i];
+                else if (i == 0) at(i, j) = ac[j];
+                else if (i + j == n) at(i, j) = bc[j];
+                else at(i, j) = add_vertex(p_[a] + (p_[b] - p_[a]) * (double(i) / n) + (p_[c] - p_[a]) * (double(j) / n));
+            }
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; i + j < n; ++j) {
+                add_element({at(i, j), at(i + 1, j), at(i, j + 1), -1});
+                if (i + j < n - 1) add_element({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), -1});
+            }
+    }
+
+    /// Bilinear grid of nu x nv quads over the convex quad (a, b, c, d).
+    void quad(int a, int b, int c, int d, int nu, int nv) {
+        std::vector<int32_t> grid((nu + 1) * (nv + 1));
+        auto at = [&](int i, int j) -> int32_t& { return grid[j * (nu + 1) + i]; };
+        const auto ab = edge(a, b, nu), dc = edge(d, c, nu), ad = edge(a, d, nv), bc = edge(b, c, nv);
+        for (int j = 0; j <= nv; ++j)
+            for (int i = 0; i <= nu; ++i) {
+                if (j == 0) at(i, j) = ab[i];
+                else if (j == nv) at(i, j) = dc[i];
+                else if (i == 0) at(i, j) = ad[j];
+                else if (i == nu) at(i, j) = bc[j];
+                else {
+                    const double s = double(i) / nu, t = double(j) / nv;
+                    at(i, j) = add_vertex((1 - s) * (1 - t) * p_[a] + s * (1 - t) * p_[b] + s * t * p_[c] + (1 - s) * t * p_[d]);
+                }
+            }
+        for (int j = 0; j < nv; ++j)
+            for (int i = 0; i < nu; ++i) add_element({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+
+private:
+    int32_t add_vertex(const DVec3& q) {
+        out_.vertices.emplace_back(q);
+        return static_cast<int32_t>(out_.vertices.size()) - 1;
+    }
+
+    /// The n + 1 vertices from corner i to corner j, created on first use.
+    std::vector<int32_t> edge(int i, int j, int n) {
+        const bool flip = i > j;
+        const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+        auto found = edges_.find(key);
+        if (found == edges_.end()) {
+            const Vec3 from(p_[key.first]), to(p_[key.second]);
+            std::vector<int32_t> v(n + 1);
+            v[0] = corner_[key.first];
+            v[n] = corner_[key.second];
+            for (int k = 1; k < n; ++k) v[k] = add_vertex(DVec3(symmetric_lerp(from, to, k, n)));
+            found = edges_.emplace(key, std::move(v)).first;
+        }
+        std::vector<int32_t> v = found->second;
+        if (flip) std::reverse(v.begin(), v.end());
+        return v;
+    }
+
+    /// Point k of n along from->to, computed from the nearer end so that (to, from, n - k) gives the same bits.
+    static Vec3 symmetric_lerp(const Vec3& from, const Vec3& to, int k, int n) {
+        if (2 * k == n) return (from + to) * 0.5f;
+        if (2 * k < n) return from + (to - from) * (float(k) / float(n));
+        return to + (from - to) * (float(n - k) / float(n));
+    }
+
+    void add_element(const std::array<int32_t, 4>& c) {
+        const DVec3 a(out_.vertices[c[0]]), b(out_.vertices[c[1]]), d(out_.vertices[c[2]]);
+        DVec3 centre, twice_area;
+        if (c[3] < 0) {
+            twice_area = glm::cross(b - a, d - a);
+            centre = (a + b + d) / 3.0;
+        } else {
+            const DVec3 e(out_.vertices[c[3]]);
+            const DVec3 n1 = glm::cross(b - a, d - a), n2 = glm::cross(d - a, e - a);
+            twice_area = n1 + n2;
+            const double w1 = glm::length(n1), w2 = glm::length(n2);
+            centre = (w1 * (a + b + d) / 3.0 + w2 * (a + d + e) / 3.0) / (w1 + w2);
+        }
+        const double length = glm::length(twice_area);
+        // Collinear corners of an n-gon can leave zero-area ears: they carry no light.
+        if (!(length > 0.0)) return;
+        out_.corners.push_back(c);
+        out_.centre.emplace_back(centre);
+        out_.normal.emplace_back(twice_area / length);
+        out_.area.push_back(static_cast<float>(0.5 * length));
+        out_.polygon.push_back(polygon_);
+        out_.reflectance.push_back(rho_);
+        out_.emission.push_back(emitted_);
+    }
+
+    Elements& out_;
+    const std::vector<DVec3>& p_;
+    int32_t polygon_;
+    Rgb rho_, emitted_;
+    std::vector<int32_t> corner_;
+    std::map<std::pair<int, int>, std::vector<int32_t>> edges_;
+};
+
+bool is_convex(const std::vector<DVec3>& p, const DVec3& normal) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const DVec3 &a = p[i], &b = p[(i + 1) % p.size()], &c = p[(i + 2) % p.size()];
+        if (!(glm::dot(glm::cross(b - a, c - b), normal) > 0.0)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+BuildResult build_elements(const SceneInput& in, float max_edge) {
+    if (!(max_edge >= 0.0f) || !std::isfinite(max_edge)) throw InputError("max_edge must be finite and >= 0");
+    validate_arrays(in);
+    BuildResult result;
+    Elements& out = result.elements;
+    const std::size_t corner_count = in.face_count ? static_cast<std::size_t>(in.face_offsets[in.face_count]) : 0;
+    out.corner_vertex.assign(corner_count, -1);
+
+    std::vector<DVec3> p;
+    for (std::size_t f = 0; f < in.face_count; ++f) {
+        const int32_t first = in.face_offsets[f], count = in.face_offsets[f + 1] - first;
+        const auto polygon = static_cast<int32_t>(f);
+        auto skip = [&](Defect defect) { result.skipped.push_back({polygon, defect}); };
+        if (count < 3) { skip(Defect::TooFewCorners); continue; }
+        p.clear();
+        bool bad_index = false, finite = true;
+        for (int32_t k = 0; k < count; ++k) {
+            const int32_t v = in.corner_vertices[first + k];
+            if (v < 0 || static_cast<std::size_t>(v) >= in.vertex_count) { bad_index = true; break; }
+            const float* q = in.positions + 3 * static_cast<std::size_t>(v);
+            finite = finite && std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]);
+            p.emplace_back(q[0], q[1], q[2]);
+        }
+        if (bad_index) { skip(Defect::BadIndex); continue; }
+        if (!finite) { skip(Defect::NonFinite); continue; }
+
+        const DVec3 twice_area = newell(p);
+        double longest = 0.0;
+        for (int32_t k = 0; k < count; ++k) longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
+        // Zero area relative to the polygon's size, at float precision (the input is float).
+        if (!(glm::length(twice_area) > 1e-7 * longest * longest)) { skip(Defect::ZeroArea); continue; }
+        const DVec3 normal = glm::normalize(twice_area);
+
+        const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
+        const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
+        PolygonBuilder build(out, p, polygon, rho, emitted);
+        auto length = [&](int i, int j) { return glm::length(p[j] - p[i]); };
+        if (count == 3) {
+            // Regular subdivision needs one count for all three edges, so a short edge may be cut
+            // finer than its own length asks for (a T-vertex against a neighbour on that edge).
+            const int n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
+                                    segments(length(2, 0), max_edge)});
+            build.triangle(0, 1, 2, n);
+        } else if (count == 4 && is_convex(p, normal)) {
+            // Opposite edges share a count; they agree with their neighbours when they are equally long.
+            const int nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
+            const int nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
+            build.quad(0, 1, 2, 3, nu, nv);
+        } else {
+            // Concave quads and n-gons: ear clipping, then one count for all triangles so that they
+            // share the vertices on their common diagonals.
+            const auto triangles = triangulate(p, normal);
+            int n = 1;
+            for (const auto& t : triangles)
+                n = std::max({n, segments(length(t[0], t[1]), max_edge), segments(length(t[1], t[2]), max_edge),
+                              segments(length(t[2], t[0]), max_edge)});
+            for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], n);
+        }
+        for (int32_t k = 0; k < count; ++k) out.corner_vertex[first + k] = build.corner(k);
+    }
+    return result;
+}
+
+}  // namespace radiosity
