@@ -1,0 +1,86 @@
+/// @file form_factors.cpp
+/// @brief Form-factor rows: all of them in parallel into CSR, or one at a time on demand.
+
+#include "radiosity/form_factors.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+
+namespace radiosity {
+
+SparseMatrix compute_form_factors(const Elements& elements, int resolution, const ProgressFn& progress) {
+    const std::size_t n = elements.size();
+    const auto weights = CubeWeights::make(resolution);
+    tbb::enumerable_thread_specific<Hemicube> hemicubes([&] { return Hemicube(weights); });
+    std::vector<SparseRow> rows(n);
+
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> cancelled{false};
+    std::mutex report;
+    const std::size_t step = std::max<std::size_t>(1, (n + 99) / 100);  // about every 1%
+    auto tell = [&](std::size_t finished) {
+        if (!progress) return;
+        std::lock_guard<std::mutex> lock(report);
+        Progress p;
+        p.phase = "form_factors";
+        p.done = finished;
+        p.total = n;
+        p.element_count = n;
+        if (!progress(p)) cancelled = true;
+    };
+
+    tbb::task_group_context context;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& range) {
+        Hemicube& hemicube = hemicubes.local();
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            if (cancelled) {
+                context.cancel_group_execution();
+                return;
+            }
+            const auto e = static_cast<int32_t>(i);
+            hemicube.render_hemisphere(elements, elements.centre[i], elements.normal[i], e);
+            hemicube.accumulate(weights->form_factor, rows[i]);
+            const std::size_t finished = ++done;
+            if (finished % step == 0 && finished != n) tell(finished);
+        }
+    }, context);
+    if (!cancelled) tell(n);
+    // The callback may run on a worker thread; Cancelled is thrown here, on the caller's.
+    if (cancelled) throw Cancelled();
+
+    SparseMatrix matrix;
+    matrix.row_start.resize(n + 1);
+    matrix.row_start[0] = 0;
+    for (std::size_t i = 0; i < n; ++i) matrix.row_start[i + 1] = matrix.row_start[i] + static_cast<int64_t>(rows[i].col.size());
+    matrix.col.reserve(matrix.row_start[n]);
+    matrix.val.reserve(matrix.row_start[n]);
+    for (SparseRow& row : rows) {
+        matrix.col.insert(matrix.col.end(), row.col.begin(), row.col.end());
+        matrix.val.insert(matrix.val.end(), row.val.begin(), row.val.end());
+        row = SparseRow();
+    }
+    return matrix;
+}
+
+void StoredRows::row(int32_t i, SparseRow& out) {
+    if (i < 0 || static_cast<std::size_t>(i) >= matrix_.rows()) throw InputError("row " + std::to_string(i) + " out of range");
+    const auto begin = matrix_.row_start[i], end = matrix_.row_start[i + 1];
+    out.col.assign(matrix_.col.begin() + begin, matrix_.col.begin() + end);
+    out.val.assign(matrix_.val.begin() + begin, matrix_.val.begin() + end);
+}
+
+HemicubeRows::HemicubeRows(const Elements& elements, int resolution)
+    : elements_(elements), hemicube_(CubeWeights::make(resolution)) {}
+
+void HemicubeRows::row(int32_t i, SparseRow& out) {
+    if (i < 0 || static_cast<std::size_t>(i) >= elements_.size()) throw InputError("row " + std::to_string(i) + " out of range");
+    hemicube_.render_hemisphere(elements_, elements_.centre[i], elements_.normal[i], i);
+    hemicube_.accumulate(hemicube_.weights().form_factor, out);
+}
+
+}  // namespace radiosity
