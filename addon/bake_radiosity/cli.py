@@ -1,0 +1,83 @@
+"""Headless baking from the command line.
+
+    blender -b scene.blend --python-expr "import bake_radiosity.cli as c; c.main()" -- \\
+        --output baked.blend [--resolution 256] [--element-size 0.05] [--method PROGRESSIVE] ...
+
+or, with the path of this file:  blender -b scene.blend --python .../bake_radiosity/cli.py -- ...
+
+Bakes the file's active scene, saves it to --output (default: over the input file) and exits
+0; on any failure prints "Bake Radiosity failed: <reason>" and exits 1.
+"""
+
+import argparse
+import os
+import sys
+
+
+def parse(argv):
+    parser = argparse.ArgumentParser(prog="blender -b scene.blend --python-expr '...' --",
+                                     description="Bake radiosity into colour attributes and save.")
+    parser.add_argument("--output", help="where to save the baked file (default: overwrite the input)")
+    parser.add_argument("--scene", help="scene to bake (default: the file's active scene)")
+    parser.add_argument("--method", choices=("AUTO", "GAUSS_SEIDEL", "PROGRESSIVE", "JACOBI"))
+    parser.add_argument("--resolution", type=int, dest="hemicube_resolution", help="hemi-cube resolution")
+    parser.add_argument("--element-size", type=float, help="largest element edge in metres (0 = faces)")
+    parser.add_argument("--tolerance", type=float, help="relative residual to stop at")
+    parser.add_argument("--max-iterations", type=int)
+    parser.add_argument("--hard-edge-angle", type=float, help="degrees")
+    parser.add_argument("--attribute-name")
+    parser.add_argument("--target", choices=("ORIGINAL", "COPIES"))
+    return parser.parse_args(argv)
+
+
+def overrides_of(arguments):
+    import math
+    overrides = {k: v for k, v in vars(arguments).items() if v is not None and k not in ("output", "scene")}
+    if "hard_edge_angle" in overrides:
+        overrides["hard_edge_angle"] = math.radians(overrides["hard_edge_angle"])
+    return overrides
+
+
+def main(argv=None):
+    if argv is None:
+        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    arguments = parse(argv)
+    try:
+        _bake_and_save(arguments)
+    except Exception as error:
+        print("Bake Radiosity failed: %s" % error, file=sys.stderr, flush=True)
+        sys.exit(1)
+
+
+def _bake_and_save(arguments):
+    import importlib
+
+    import addon_utils
+    import bpy
+
+    if not hasattr(bpy.types.Scene, "radiosity"):
+        addon_utils.enable(__package__, default_set=False, handle_error=_raise)
+    pipeline = importlib.import_module(__package__ + ".pipeline")
+
+    scene = bpy.data.scenes[arguments.scene] if arguments.scene else bpy.context.scene
+    summary = pipeline.bake(scene, **overrides_of(arguments))
+    for warning in summary["warnings"]:
+        print("Bake Radiosity warning: %s" % warning, flush=True)
+    print("Bake Radiosity: %s" % scene.radiosity.last_report, flush=True)
+    output = arguments.output or bpy.data.filepath
+    if not output:
+        raise RuntimeError("no --output given and the scene was never saved")
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(output))
+    print("Bake Radiosity: saved %s" % os.path.abspath(output), flush=True)
+
+
+def _raise(error):
+    raise error
+
+
+if __name__ == "__main__":
+    # Run as a script (--python path/to/cli.py): make the package importable, then bake.
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    from bake_radiosity import cli
+
+    cli.main()

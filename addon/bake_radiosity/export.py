@@ -1,0 +1,216 @@
+"""The visible scene as flat arrays for the core: world-space polygons with their materials,
+plus lamps. Reads evaluated meshes (modifiers applied, instances included) with foreach_get."""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import lights, materials
+
+# Objects made by a COPIES bake carry this property; they are output, never input.
+COPY_TAG = "radiosity_bake_copy"
+GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+
+
+@dataclass
+class Part:
+    """One exported mesh instance and where its polygons and corners sit in the flat arrays."""
+    object_name: str
+    mesh_name: str
+    is_instance: bool
+    polygon_start: int
+    polygon_stop: int
+    corner_start: int
+    corner_stop: int
+    # corner_order[k] = the mesh loop stored at flat corner corner_start + k (winding reversed
+    # for mirrored instances so normals point the way Blender shows them).
+    corner_order: np.ndarray
+    polygon_material_index: np.ndarray
+    material_names: list
+    matrix_world: np.ndarray
+    writable: bool = True
+
+
+@dataclass
+class ExportedScene:
+    positions: np.ndarray       # (V,3) float32, world space
+    face_offsets: np.ndarray    # (F+1,) int32
+    corner_vertices: np.ndarray  # (C,) int32
+    reflectance: np.ndarray     # (F,3) float32
+    emission: np.ndarray        # (F,3) float32
+    material: np.ndarray        # (F,) int32: one id per material, lamps get their own
+    lights: list
+    parts: list
+    warnings: list = field(default_factory=list)
+
+    @property
+    def polygon_count(self):
+        return len(self.face_offsets) - 1
+
+
+def export_scene(depsgraph, view_layer):
+    builder = _Builder()
+    for instance in depsgraph.object_instances:
+        obj = instance.object
+        if not _is_visible(instance, view_layer):
+            continue
+        if obj.type == "LIGHT":
+            builder.add_light(obj, instance.matrix_world)
+        elif obj.type in GEOMETRY_TYPES and not obj.original.get(COPY_TAG):
+            builder.add_geometry(instance)
+    return builder.finish()
+
+
+def polygon_normals_areas(positions, face_offsets, corner_vertices):
+    """Unit normals (F,3) and areas (F,) of planar polygons by Newell's method, vectorised."""
+    starts = face_offsets[:-1]
+    counts = np.diff(face_offsets)
+    polygon_of_corner = np.repeat(np.arange(len(counts)), counts)
+    following = np.arange(len(corner_vertices)) + 1
+    last = face_offsets[1:] - 1
+    following[last] = starts
+    p = positions[corner_vertices].astype(np.float64)
+    q = positions[corner_vertices[following]].astype(np.float64)
+    twice = np.zeros((len(counts), 3))
+    np.add.at(twice, polygon_of_corner, np.cross(p, q))
+    length = np.linalg.norm(twice, axis=1)
+    normals = twice / np.where(length > 0.0, length, 1.0)[:, None]
+    return normals, 0.5 * length
+
+
+def _is_visible(instance, view_layer):
+    if instance.is_instance:
+        return instance.parent is not None and instance.parent.original.visible_get(view_layer=view_layer)
+    return instance.show_self and instance.object.original.visible_get(view_layer=view_layer)
+
+
+class _Builder:
+    def __init__(self):
+        self.positions, self.counts, self.corners = [], [], []
+        self.polygon_material = []
+        self.material_ids = {}          # material name (None = no material) -> id
+        self.surfaces = []              # id -> Surface
+        self.parts, self.lights, self.warnings = [], [], []
+        self.vertex_total = self.polygon_total = self.corner_total = 0
+
+    def material_id(self, material):
+        key = material.name if material is not None else None
+        if key not in self.material_ids:
+            surface = materials.surface_of(material)
+            warning = materials.warning_for(key, surface)
+            if warning:
+                self.warnings.append(warning)
+            self.material_ids[key] = len(self.surfaces)
+            self.surfaces.append(surface)
+        return self.material_ids[key]
+
+    def add_geometry(self, instance):
+        obj = instance.object
+        mesh = obj.to_mesh()
+        try:
+            self._add_mesh(instance, obj, mesh)
+        finally:
+            obj.to_mesh_clear()
+
+    def _add_mesh(self, instance, obj, mesh):
+        if len(mesh.polygons) == 0:
+            return
+        matrix = np.array(instance.matrix_world, dtype=np.float64)
+        co = _read(mesh.vertices, "co", np.float32, 3)
+        loop_start = _read(mesh.polygons, "loop_start", np.int32)
+        loop_total = _read(mesh.polygons, "loop_total", np.int32)
+        loop_vertex = _read(mesh.loops, "vertex_index", np.int32)
+        material_index = _read(mesh.polygons, "material_index", np.int32)
+
+        world = co.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+        order = _corner_order(loop_start, loop_total, mirrored=np.linalg.det(matrix[:3, :3]) < 0.0)
+
+        slots = [slot.material for slot in obj.material_slots]
+        slot_ids = np.array([self.material_id(m) for m in slots] or [self.material_id(None)], dtype=np.int32)
+        material_index = np.clip(material_index, 0, len(slot_ids) - 1)
+
+        original = obj.original
+        self.parts.append(Part(
+            object_name=original.name,
+            mesh_name=original.data.name if original.type == "MESH" else "",
+            is_instance=instance.is_instance,
+            polygon_start=self.polygon_total, polygon_stop=self.polygon_total + len(loop_start),
+            corner_start=self.corner_total, corner_stop=self.corner_total + len(loop_vertex),
+            corner_order=order,
+            polygon_material_index=material_index,
+            material_names=[m.name if m is not None else None for m in slots],
+            matrix_world=matrix,
+            writable=(not instance.is_instance and original.type == "MESH"
+                      and len(original.data.loops) == len(mesh.loops)
+                      and len(original.data.polygons) == len(mesh.polygons)),
+        ))
+        self.positions.append(world)
+        self.counts.append(loop_total)
+        self.corners.append(loop_vertex[order] + self.vertex_total)
+        self.polygon_material.append(slot_ids[material_index])
+        self.vertex_total += len(world)
+        self.polygon_total += len(loop_start)
+        self.corner_total += len(loop_vertex)
+
+    def add_light(self, obj, matrix_world):
+        if obj.data.type == "AREA":
+            if getattr(getattr(obj.data, "cycles", None), "is_portal", False):
+                return
+            corners, radiance, warnings = lights.area_polygon(obj, matrix_world)
+            self.warnings += warnings
+            # Each lamp is its own black emitter (own material id: no blending with neighbours).
+            self.surfaces.append(materials.Surface(np.zeros(3), radiance))
+            self.positions.append(corners)
+            self.counts.append(np.array([len(corners)], dtype=np.int32))
+            self.corners.append(np.arange(len(corners), dtype=np.int32) + self.vertex_total)
+            self.polygon_material.append(np.array([len(self.surfaces) - 1], dtype=np.int32))
+            self.vertex_total += len(corners)
+            self.polygon_total += 1
+            self.corner_total += len(corners)
+            return
+        entry, warnings = lights.point_like(obj, matrix_world)
+        self.warnings += warnings
+        self.lights.append(entry)
+
+    def finish(self):
+        self._mark_shared_meshes()
+        counts = np.concatenate(self.counts) if self.counts else np.zeros(0, np.int32)
+        material = np.concatenate(self.polygon_material) if self.polygon_material else np.zeros(0, np.int32)
+        reflectance = np.array([s.reflectance for s in self.surfaces], dtype=np.float32).reshape(-1, 3)
+        emission = np.array([s.emission for s in self.surfaces], dtype=np.float32).reshape(-1, 3)
+        return ExportedScene(
+            positions=(np.concatenate(self.positions) if self.positions else np.zeros((0, 3))).astype(np.float32),
+            face_offsets=np.concatenate([[0], np.cumsum(counts)]).astype(np.int32),
+            corner_vertices=(np.concatenate(self.corners) if self.corners else np.zeros(0)).astype(np.int32),
+            reflectance=reflectance[material] if len(material) else np.zeros((0, 3), np.float32),
+            emission=emission[material] if len(material) else np.zeros((0, 3), np.float32),
+            material=material.astype(np.int32),
+            lights=self.lights, parts=self.parts, warnings=self.warnings,
+        )
+
+    def _mark_shared_meshes(self):
+        """A mesh shown by several objects can hold only one lighting: ORIGINAL skips it."""
+        users = {}
+        for part in self.parts:
+            users.setdefault(part.mesh_name, []).append(part)
+        for name, parts in users.items():
+            if len(parts) > 1:
+                for part in parts:
+                    part.writable = False
+
+
+def _corner_order(loop_start, loop_total, mirrored):
+    """Mesh loop indices in polygon order (Blender does not promise loop_start is sorted),
+    each polygon's loops reversed when the transform mirrors."""
+    polygon = np.repeat(np.arange(len(loop_start)), loop_total)
+    first_flat = np.concatenate([[0], np.cumsum(loop_total)[:-1]])
+    offset = np.arange(int(loop_total.sum())) - first_flat[polygon]
+    if mirrored:
+        offset = loop_total[polygon] - 1 - offset
+    return (loop_start[polygon] + offset).astype(np.int64)
+
+
+def _read(collection, attribute, dtype, width=1):
+    values = np.empty(len(collection) * width, dtype=dtype)
+    collection.foreach_get(attribute, values)
+    return values.reshape(-1, width) if width > 1 else values

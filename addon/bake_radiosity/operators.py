@@ -1,0 +1,189 @@
+"""The "Bake Radiosity" operator. Interactively the core runs in a worker thread while a timer
+keeps the status bar (and, for progressive refinement, the viewport) up to date; Esc cancels.
+Nothing is written until the solve has succeeded, so a cancelled or failed bake changes nothing,
+and a finished bake is one undo step."""
+
+import threading
+
+import bpy
+
+from . import native, overlay, pipeline, preview
+
+_running = None  # the operator instance baking now; one bake at a time
+
+
+class _Worker:
+    """Runs the solve off the main thread. The progress callback only stores and answers."""
+
+    def __init__(self, job, want_layout):
+        self.job = job
+        self.want_layout = want_layout
+        self.layout = None
+        self.latest = None
+        self.cancel_requested = False
+        self.cancelled = False
+        self.error = None
+        self.done = False
+        self.thread = threading.Thread(target=self._run, name="Bake Radiosity", daemon=True)
+
+    def _progress(self, info):
+        self.latest = info
+        return not self.cancel_requested
+
+    def _run(self):
+        core = native.core()
+        try:
+            if self.want_layout:
+                self.layout = self.job.element_layout()
+            if not self.cancel_requested:
+                self.job.solve(progress=self._progress)
+            self.cancelled = self.cancel_requested
+        except core.Cancelled:
+            self.cancelled = True
+        except Exception as error:  # reported to the artist in the main thread
+            self.error = error
+        finally:
+            self.done = True
+
+
+class RADIOSITY_OT_bake(bpy.types.Operator):
+    bl_idname = "radiosity.bake"
+    bl_label = "Bake Radiosity"
+    bl_description = ("Bake diffuse light (radiosity) of the visible scene into a colour attribute. "
+                      "Esc cancels")
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene is not None and _running is None
+
+    def execute(self, context):
+        try:
+            summary = pipeline.bake(context.scene)
+        except (pipeline.BakeError, native.CoreMissingError, ValueError, TypeError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        for warning in summary["warnings"]:
+            self.report({"WARNING"}, warning)
+        self.report({"INFO"}, "Bake Radiosity: " + context.scene.radiosity.last_report)
+        return {"FINISHED"}
+
+    def invoke(self, context, event):
+        global _running
+        if bpy.app.background:
+            return self.execute(context)
+        try:
+            native.core()
+            view_layer, depsgraph = pipeline.view_layer_and_depsgraph(context.scene)
+            job = pipeline.BakeJob(context.scene, depsgraph, view_layer)
+        except (pipeline.BakeError, native.CoreMissingError) as error:
+            self.report({"ERROR"}, str(error))
+            return {"CANCELLED"}
+        self._scene_name = context.scene.name
+        self._worker = _Worker(job, want_layout=job.method == "progressive")
+        self._overlay = None
+        self._worker.thread.start()
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.2, window=context.window)
+        wm.modal_handler_add(self)
+        _running = self
+        self._set_status(context, "Bake Radiosity: exporting done, starting (%d faces) - Esc to cancel"
+                         % job.exported.polygon_count)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        worker = self._worker
+        if event.type == "ESC" and event.value == "PRESS":
+            worker.cancel_requested = True
+            self._set_status(context, "Bake Radiosity: cancelling...")
+            return {"RUNNING_MODAL"}
+        if event.type != "TIMER" or event.timer is not self._timer:
+            return {"PASS_THROUGH"}
+        if worker.done:
+            return self._finish(context)
+        self._show_progress(context)
+        return {"PASS_THROUGH"}
+
+    def cancel(self, context):
+        # Blender ends the operator (e.g. a file is loaded): stop the core and drop its result.
+        self._worker.cancel_requested = True
+        self._worker.thread.join()
+        self._cleanup(context)
+
+    def _show_progress(self, context):
+        info = self._worker.latest
+        if self._worker.layout is not None and self._overlay is None:
+            self._overlay = overlay.ProgressOverlay(*self._worker.layout)
+        if info is None:
+            return
+        self._set_status(context, pipeline.progress_text(info) + " - Esc to cancel")
+        if self._overlay is not None and info.get("radiance") is not None:
+            self._overlay.show(info["radiance"])
+
+    def _finish(self, context):
+        worker = self._worker
+        self._cleanup(context)
+        if worker.cancelled:
+            self.report({"INFO"}, "Bake Radiosity cancelled; nothing was changed")
+            return {"CANCELLED"}
+        if worker.error is not None:
+            self.report({"ERROR"}, "Bake Radiosity failed: %s" % worker.error)
+            return {"CANCELLED"}
+        scene = bpy.data.scenes.get(self._scene_name)
+        if scene is None:
+            self.report({"ERROR"}, "Bake Radiosity: the baked scene was removed")
+            return {"CANCELLED"}
+        summary = worker.job.write(scene)
+        for warning in summary["warnings"]:
+            self.report({"WARNING"}, warning)
+        self.report({"INFO"}, "Bake Radiosity: " + scene.radiosity.last_report)
+        return {"FINISHED"}
+
+    def _cleanup(self, context):
+        global _running
+        context.window_manager.event_timer_remove(self._timer)
+        if self._overlay is not None:
+            self._overlay.remove()
+            self._overlay = None
+        self._set_status(context, None)
+        _running = None
+
+    @staticmethod
+    def _set_status(context, text):
+        if context.workspace is not None:
+            context.workspace.status_text_set(text)
+
+
+class RADIOSITY_OT_preview(bpy.types.Operator):
+    bl_idname = "radiosity.preview"
+    bl_label = "Preview Radiosity"
+    bl_description = ("Show the baked light in the viewport (solid shading by colour attribute, and a "
+                      "material preview that emits it); click again to restore your shading and materials")
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        if preview.is_active(context.scene):
+            preview.restore(context)
+        else:
+            message = preview.show(context)
+            if message:
+                self.report({"WARNING"}, message)
+        return {"FINISHED"}
+
+
+CLASSES = (RADIOSITY_OT_bake, RADIOSITY_OT_preview)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    global _running
+    if _running is not None:
+        _running._worker.cancel_requested = True
+        _running._worker.thread.join()
+        _running = None
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

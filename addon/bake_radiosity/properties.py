@@ -1,0 +1,92 @@
+"""Bake settings stored on the scene (``scene.radiosity``) and saved with the .blend file."""
+
+import math
+
+import bpy
+from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
+
+
+class RadiositySettings(bpy.types.PropertyGroup):
+    method: EnumProperty(
+        name="Method",
+        description="How the radiosity equations are solved",
+        items=(
+            ("AUTO", "Automatic",
+             "Gauss-Seidel when the form-factor matrix fits in memory, otherwise progressive refinement"),
+            ("GAUSS_SEIDEL", "Gauss-Seidel",
+             "Store every form factor once, then gather until converged. Fastest for small and medium scenes"),
+            ("PROGRESSIVE", "Progressive Refinement",
+             "Shoot light from the brightest patch, one hemi-cube at a time. Memory grows only linearly "
+             "with the scene, and the viewport shows the solution brightening"),
+            ("JACOBI", "Jacobi",
+             "Like Gauss-Seidel but every element is updated from the previous sweep. Slower; for comparison"),
+        ),
+        default="AUTO",
+    )
+    hemicube_resolution: IntProperty(
+        name="Hemi-cube Resolution",
+        description="Cells along the edge of the hemi-cube's top face. Higher finds smaller and more "
+                    "distant surfaces at the cost of time (64 quick look, 128 normal, 256 final)",
+        default=128, min=16, max=2048, soft_max=512,
+    )
+    element_size: FloatProperty(
+        name="Element Size",
+        description="Largest edge of the elements that faces are split into, in scene units. "
+                    "0 keeps one element per face. Smaller gives sharper shadows and slower bakes",
+        default=0.1, min=0.0, soft_max=2.0, subtype="DISTANCE", unit="LENGTH", precision=3,
+    )
+    tolerance: FloatProperty(
+        name="Tolerance",
+        description="Stop when the remaining error of the solution, relative to the emitted light, "
+                    "falls below this (1e-3 preview, 1e-4 final)",
+        default=1e-4, min=1e-8, max=0.5, precision=6,
+    )
+    max_iterations: IntProperty(
+        name="Max Iterations",
+        description="Give up after this many sweeps (Gauss-Seidel, Jacobi) or shots (progressive) "
+                    "even if the tolerance is not reached",
+        default=1000, min=1, soft_max=100000,
+    )
+    hard_edge_angle: FloatProperty(
+        name="Hard Edge Angle",
+        description="Faces meeting at a sharper angle than this keep their own colours at the shared "
+                    "corner instead of blending (30 degrees suits most architecture)",
+        default=math.radians(30.0), min=0.0, max=math.pi, subtype="ANGLE",
+    )
+    attribute_name: StringProperty(
+        name="Attribute",
+        description="Name of the face-corner colour attribute that receives the baked light",
+        default="Radiosity",
+    )
+    target: EnumProperty(
+        name="Target",
+        description="Where the baked light is written",
+        items=(
+            ("ORIGINAL", "Original Meshes",
+             "Write a colour attribute onto each baked mesh at its own resolution"),
+            ("COPIES", "Subdivided Copies",
+             "Write onto new meshes made of the bake's elements, in a \"Radiosity Bake\" collection, "
+             "keeping every detail of the solution"),
+        ),
+        default="ORIGINAL",
+    )
+    last_report: StringProperty(
+        name="Last Bake",
+        description="Summary of the most recent bake of this scene",
+        default="",
+    )
+
+
+CLASSES = (RadiositySettings,)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.radiosity = bpy.props.PointerProperty(type=RadiositySettings)
+
+
+def unregister():
+    del bpy.types.Scene.radiosity
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

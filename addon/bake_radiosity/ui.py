@@ -1,0 +1,65 @@
+"""The Radiosity panel, in Properties > Render and in the 3D View's sidebar (N)."""
+
+import bpy
+
+from . import preview
+
+
+def draw_panel(layout, context):
+    settings = context.scene.radiosity
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    row = layout.row()
+    row.scale_y = 1.5
+    row.operator("radiosity.bake", icon="RENDER_STILL")
+    showing = preview.is_active(context.scene)
+    layout.operator("radiosity.preview", text="Restore Shading" if showing else "Preview Bake",
+                    icon="HIDE_OFF" if showing else "SHADING_SOLID", depress=showing)
+    if settings.last_report:
+        box = layout.box()
+        box.label(text=settings.last_report, icon="INFO")
+
+    column = layout.column()
+    column.prop(settings, "method")
+    column.prop(settings, "element_size")
+    column.prop(settings, "hemicube_resolution", text="Resolution")
+    column.prop(settings, "tolerance")
+    column.prop(settings, "max_iterations")
+    column.prop(settings, "hard_edge_angle")
+    column.separator()
+    column.prop(settings, "target")
+    column.prop(settings, "attribute_name")
+
+
+class RADIOSITY_PT_render(bpy.types.Panel):
+    bl_label = "Radiosity"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        draw_panel(self.layout, context)
+
+
+class RADIOSITY_PT_view3d(bpy.types.Panel):
+    bl_label = "Radiosity"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Radiosity"
+
+    def draw(self, context):
+        draw_panel(self.layout, context)
+
+
+CLASSES = (RADIOSITY_PT_render, RADIOSITY_PT_view3d)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,123 @@
+"""The solved light into the file: a FLOAT_COLOR face-corner attribute on the baked meshes
+(ORIGINAL) or on new meshes built from the bake's elements (COPIES)."""
+
+import bpy
+import numpy as np
+
+from .export import COPY_TAG
+
+COLLECTION_NAME = "Radiosity Bake"
+
+
+def write(scene, exported, result, settings):
+    """Writes `result` as `settings` ask and returns warnings about what could not be written."""
+    if settings["target"] == "ORIGINAL":
+        return _write_original(exported, result["corner_radiance"], settings["attribute_name"])
+    return _write_copies(scene, exported, result, settings["attribute_name"])
+
+
+def set_color_attribute(mesh, name, rgb):
+    """Stores (loops,3) linear RGB as the mesh's active and render FLOAT_COLOR corner attribute."""
+    attributes = mesh.color_attributes
+    existing = attributes.get(name)
+    if existing is not None and (existing.domain != "CORNER" or existing.data_type != "FLOAT_COLOR"):
+        attributes.remove(existing)
+        existing = None
+    attribute = existing or attributes.new(name, "FLOAT_COLOR", "CORNER")
+    rgba = np.ones((len(rgb), 4), dtype=np.float32)
+    rgba[:, :3] = rgb
+    attribute.data.foreach_set("color", rgba.ravel())
+    attributes.active_color = attribute
+    attributes.render_color_index = list(attributes).index(attribute)
+    mesh.update()
+
+
+def _write_original(exported, corner_radiance, name):
+    written, refused = set(), []
+    for part in exported.parts:
+        if not part.writable:
+            refused.append(part.object_name)
+            continue
+        obj = bpy.data.objects.get(part.object_name)
+        if obj is None or obj.type != "MESH" or part.object_name in written:
+            continue
+        mesh = obj.data
+        if _name_taken_by_other_attribute(mesh, name):
+            refused.append(part.object_name)
+            continue
+        rgb = np.empty((len(mesh.loops), 3), dtype=np.float32)
+        rgb[part.corner_order] = corner_radiance[part.corner_start:part.corner_stop]
+        set_color_attribute(mesh, name, rgb)
+        written.add(part.object_name)
+    if not refused:
+        return []
+    names = sorted(set(refused))
+    return ["Not written onto %d object(s) (%s%s): instances, meshes shared by several objects, modifiers "
+            "that change the face count, or a non-colour attribute named '%s'. They still light the scene; "
+            "use Target: Subdivided Copies to get their light"
+            % (len(names), ", ".join(names[:5]), ", ..." if len(names) > 5 else "", name)]
+
+
+def _name_taken_by_other_attribute(mesh, name):
+    attribute = mesh.attributes.get(name)
+    return attribute is not None and mesh.color_attributes.get(name) is None
+
+
+def remove_copies():
+    """Deletes the objects and meshes a COPIES bake made, and nothing else."""
+    for obj in [o for o in bpy.data.objects if o.get(COPY_TAG)]:
+        mesh = obj.data
+        bpy.data.objects.remove(obj)
+        if mesh is not None and mesh.users == 0:
+            bpy.data.meshes.remove(mesh)
+
+
+def _copies_collection(scene):
+    collection = bpy.data.collections.get(COLLECTION_NAME)
+    if collection is None:
+        collection = bpy.data.collections.new(COLLECTION_NAME)
+    if collection.name not in scene.collection.children:
+        scene.collection.children.link(collection)
+    return collection
+
+
+def _write_copies(scene, exported, result, name):
+    remove_copies()
+    collection = _copies_collection(scene)
+    element_polygon = result["element_polygon"]
+    by_polygon = np.argsort(element_polygon, kind="stable")
+    sorted_polygon = element_polygon[by_polygon]
+    for part in exported.parts:
+        first, last = np.searchsorted(sorted_polygon, [part.polygon_start, part.polygon_stop])
+        elements = by_polygon[first:last]
+        if len(elements) == 0:
+            continue
+        mesh = _element_mesh("%s %s" % (part.object_name, name), name, result, elements, part)
+        obj = bpy.data.objects.new(mesh.name, mesh)
+        obj[COPY_TAG] = part.object_name
+        collection.objects.link(obj)
+    return []
+
+
+def _element_mesh(mesh_name, attribute_name, result, elements, part):
+    corners = result["element_corners"][elements]
+    used = corners >= 0
+    counts = used.sum(axis=1).astype(np.int32)
+    vertex_ids, loop_vertex = np.unique(corners[used], return_inverse=True)
+
+    mesh = bpy.data.meshes.new(mesh_name)
+    mesh.vertices.add(len(vertex_ids))
+    mesh.vertices.foreach_set("co", result["element_vertices"][vertex_ids].astype(np.float32).ravel())
+    mesh.loops.add(len(loop_vertex))
+    mesh.loops.foreach_set("vertex_index", loop_vertex.astype(np.int32))
+    mesh.polygons.add(len(elements))
+    mesh.polygons.foreach_set("loop_start", np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int32))
+    if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # Blender < 4.0
+        mesh.polygons.foreach_set("loop_total", counts)
+    source_polygon = result["element_polygon"][elements] - part.polygon_start
+    mesh.polygons.foreach_set("material_index", part.polygon_material_index[source_polygon].astype(np.int32))
+    mesh.update(calc_edges=True)
+    for material_name in part.material_names:
+        mesh.materials.append(bpy.data.materials.get(material_name) if material_name else None)
+    set_color_attribute(mesh, attribute_name, result["element_corner_radiance"][elements][used])
+    return mesh

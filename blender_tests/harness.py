@@ -1,0 +1,63 @@
+"""Shared set-up for the tests that run inside Blender:
+
+    blender -b --factory-startup --python-exit-code 1 --python test_x.py -- --addon-zip <zip> --work <dir>
+
+parses those arguments, installs and enables the add-on from the zip, and runs test functions,
+failing the process (exit code 1 through --python-exit-code) if any fails."""
+
+import argparse
+import os
+import sys
+import time
+import traceback
+
+import addon_utils
+import bpy
+
+MODULE = "bake_radiosity"
+
+
+def arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--addon-zip", required=True)
+    parser.add_argument("--work", required=True)
+    parsed = parser.parse_args(argv)
+    os.makedirs(parsed.work, exist_ok=True)
+    return parsed
+
+
+def install_addon(zip_path):
+    """Installs the zip into this test's own user scripts folder and enables it."""
+    result = bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
+    assert result == {"FINISHED"}, "addon_install failed: %s" % result
+    result = bpy.ops.preferences.addon_enable(module=MODULE)
+    assert result == {"FINISHED"}, "addon_enable failed: %s" % result
+    assert addon_utils.check(MODULE)[1], "add-on not loaded after enabling"
+    return sys.modules[MODULE]
+
+
+def run(*tests):
+    """Runs each test function, reports, and raises if any failed."""
+    failures = []
+    for test in tests:
+        start = time.perf_counter()
+        try:
+            test()
+        except Exception:
+            failures.append(test.__name__)
+            print("FAIL %s\n%s" % (test.__name__, traceback.format_exc()), flush=True)
+        else:
+            print("PASS %s (%.1f s)" % (test.__name__, time.perf_counter() - start), flush=True)
+    if failures:
+        raise RuntimeError("failed: " + ", ".join(failures))
+
+
+def corner_colors(mesh, name):
+    """(loops, 3) float array of a FLOAT_COLOR corner attribute."""
+    import numpy as np
+    attribute = mesh.color_attributes[name]
+    assert attribute.domain == "CORNER" and attribute.data_type == "FLOAT_COLOR", (attribute.domain, attribute.data_type)
+    values = np.empty(len(mesh.loops) * 4, dtype=np.float32)
+    attribute.data.foreach_get("color", values)
+    return values.reshape(-1, 4)[:, :3].astype(np.float64)

@@ -1,0 +1,168 @@
+"""Test and demo scenes built from numpy arrays (no add-on needed): quads, grids, the Cornell box.
+
+Every mesh is made with foreach_set; normals follow the quads' winding (u x v)."""
+
+import math
+
+import bpy
+import numpy as np
+
+WHITE = (0.73, 0.73, 0.73)
+RED = (0.63, 0.065, 0.05)
+GREEN = (0.14, 0.45, 0.091)
+# Opening of the Cornell box's ceiling light, in cells of the 8 x 8 ceiling grid.
+CORNELL_CELLS = 8
+CORNELL_LIGHT_CELLS = (3, 5)
+
+
+def clear_scene():
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.lights,
+                       bpy.data.cameras, bpy.data.images):
+        for item in list(collection):
+            collection.remove(item)
+    for collection in list(bpy.data.collections):
+        bpy.data.collections.remove(collection)
+    world = bpy.context.scene.world
+    if world is not None:
+        # A black world: light that leaves the scene is lost, as in a radiosity solution.
+        world.use_nodes = False
+        world.color = (0.0, 0.0, 0.0)
+
+
+def grid(origin, u, v, nu, nv):
+    """Vertices and quads of an nu x nv grid spanning origin + s*u + t*v, normal along u x v."""
+    origin, u, v = (np.asarray(a, dtype=np.float64) for a in (origin, u, v))
+    s, t = np.meshgrid(np.linspace(0, 1, nu + 1), np.linspace(0, 1, nv + 1), indexing="ij")
+    vertices = origin + s.reshape(-1, 1) * u + t.reshape(-1, 1) * v
+    i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
+    first = (i * (nv + 1) + j).ravel()
+    quads = np.stack([first, first + nv + 1, first + nv + 2, first + 1], axis=1)
+    return vertices, quads
+
+
+def mesh_object(name, pieces, materials=()):
+    """An object from [(vertices, polygons (P,k), material_index)], built with foreach_set."""
+    vertices, polygons, material_index, offset = [], [], [], 0
+    for piece_vertices, piece_polygons, material in pieces:
+        vertices.append(piece_vertices)
+        polygons.append(np.asarray(piece_polygons) + offset)
+        material_index.append(np.full(len(piece_polygons), material))
+        offset += len(piece_vertices)
+    corners = np.concatenate([p.ravel() for p in polygons]).astype(np.int32)
+    counts = np.concatenate([np.full(len(p), p.shape[1]) for p in polygons]).astype(np.int32)
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(offset)
+    mesh.vertices.foreach_set("co", np.concatenate(vertices).astype(np.float32).ravel())
+    mesh.loops.add(len(corners))
+    mesh.loops.foreach_set("vertex_index", corners)
+    mesh.polygons.add(len(counts))
+    mesh.polygons.foreach_set("loop_start", np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int32))
+    mesh.polygons.foreach_set("loop_total", counts)
+    mesh.polygons.foreach_set("material_index", np.concatenate(material_index).astype(np.int32))
+    mesh.update(calc_edges=True)
+    assert not mesh.validate(verbose=True), "built an invalid mesh"
+    for material in materials:
+        mesh.materials.append(material)
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def diffuse(name, color):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    bsdf = nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (*color, 1.0)
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(bsdf.outputs["BSDF"], output.inputs["Surface"])
+    return material
+
+
+def emission(name, color, strength):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    shader = nodes.new("ShaderNodeEmission")
+    shader.inputs["Color"].default_value = (*color, 1.0)
+    shader.inputs["Strength"].default_value = strength
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(shader.outputs["Emission"], output.inputs["Surface"])
+    return material
+
+
+def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
+    """The Cornell box as one mesh object (open at -Y, 1 m wide, floor at z = 0), lit by
+    'MESH' (an emitting opening in the ceiling, radiance `radiance`), 'AREA' (an area lamp
+    filling that opening, same radiance) or 'POINT' (a point lamp under a closed ceiling,
+    emitting the same power as the opening). Returns the mesh object."""
+    white, red, green = diffuse("White", WHITE), diffuse("Red", RED), diffuse("Green", GREEN)
+    materials = [white, red, green]
+    d = 1.0 / cells
+    pieces = [
+        grid((0, 0, 0), (1, 0, 0), (0, 1, 0), cells, cells) + (0,),        # floor, normal +Z
+        grid((0, 1, 0), (1, 0, 0), (0, 0, 1), cells, cells) + (0,),        # back wall, normal -Y
+        grid((0, 0, 0), (0, 1, 0), (0, 0, 1), cells, cells) + (1,),        # left wall (red), normal +X
+        grid((1, 0, 0), (0, 0, 1), (0, 1, 0), cells, cells) + (2,),        # right wall (green), normal -X
+    ]
+    ceiling_vertices, ceiling_quads = grid((0, 0, 1), (0, 1, 0), (1, 0, 0), cells, cells)  # normal -Z
+    cell_i, cell_j = np.divmod(np.arange(cells * cells), cells)  # grid rows run along +Y, columns along +X
+    lo, hi = CORNELL_LIGHT_CELLS
+    opening = (cell_i >= lo) & (cell_i < hi) & (cell_j >= lo) & (cell_j < hi)
+    if light == "POINT":
+        pieces.append((ceiling_vertices, ceiling_quads, 0))
+    else:
+        pieces.append((ceiling_vertices, ceiling_quads[~opening], 0))
+        if light == "MESH":
+            materials.append(emission("Light", (1.0, 1.0, 1.0), radiance))
+            pieces.append((ceiling_vertices, ceiling_quads[opening], 3))
+    pieces += _block((0.5, 0.125), (0.875, 0.5), 3 * d, d)   # short block
+    pieces += _block((0.125, 0.5), (0.5, 0.875), 6 * d, d)   # tall block
+    box = mesh_object("Cornell Box", pieces, materials)
+
+    opening_side = (hi - lo) * d
+    opening_area = opening_side ** 2
+    if light == "AREA":
+        lamp = bpy.data.lights.new("Area Lamp", "AREA")
+        lamp.shape = "SQUARE"
+        lamp.size = opening_side
+        # Cycles gives an area lamp radiance power / (4 * area).
+        lamp.energy = 4.0 * opening_area * radiance
+        lamp_object = bpy.data.objects.new("Area Lamp", lamp)
+        lamp_object.location = (0.5, 0.5, 1.0)   # lamps emit along their -Z: down
+        bpy.context.scene.collection.objects.link(lamp_object)
+    elif light == "POINT":
+        lamp = bpy.data.lights.new("Point Lamp", "POINT")
+        lamp.shadow_soft_size = 0.0
+        # The opening emits pi * L * A watts; a point lamp of power P emits P.
+        lamp.energy = math.pi * radiance * opening_area
+        lamp_object = bpy.data.objects.new("Point Lamp", lamp)
+        lamp_object.location = (0.5, 0.5, 0.9)
+        bpy.context.scene.collection.objects.link(lamp_object)
+    return box
+
+
+def _block(xy0, xy1, height, cell):
+    """The five visible faces of an axis-aligned block standing on the floor (outward normals)."""
+    (x0, y0), (x1, y1) = xy0, xy1
+    nx, ny, nz = (max(1, round(extent / cell)) for extent in (x1 - x0, y1 - y0, height))
+    return [
+        grid((x0, y0, height), (x1 - x0, 0, 0), (0, y1 - y0, 0), nx, ny) + (0,),   # top, +Z
+        grid((x0, y0, 0), (x1 - x0, 0, 0), (0, 0, height), nx, nz) + (0,),         # front, -Y
+        grid((x0, y1, 0), (0, 0, height), (x1 - x0, 0, 0), nz, nx) + (0,),         # back, +Y
+        grid((x0, y0, 0), (0, 0, height), (0, y1 - y0, 0), nz, ny) + (0,),         # left, -X
+        grid((x1, y0, 0), (0, y1 - y0, 0), (0, 0, height), ny, nz) + (0,),         # right, +X
+    ]
+
+
+def camera_for_cornell_box():
+    camera = bpy.data.cameras.new("Camera")
+    camera.lens = 35.0
+    obj = bpy.data.objects.new("Camera", camera)
+    obj.location = (0.5, -1.35, 0.5)
+    obj.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.scene.camera = obj
+    return obj
