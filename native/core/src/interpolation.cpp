@@ -1,0 +1,244 @@
+/// @file interpolation.cpp
+/// @brief Element radiances to corner colours (seed 23.5), per element corner ("slot").
+///
+/// A slot (element e, corner k) sits on a welded vertex w. Its compatible set S is the elements at
+/// w whose normals differ from e's by at most the hard-edge angle and whose material is e's. The
+/// slot is on a border when some edge at w is used by only one element of S (open boundary, hard
+/// edge, material change); otherwise it is interior. Then:
+///  1. interior slot: the mean radiance of S (seed: B(e) = (B1 + B2 + B3 + B4) / 4);
+///  2. border slot: the least-squares plane through the samples S knows - its elements' radiances
+///     at their centres and its elements' interior corners (step 1) - evaluated at w.
+/// Step 2 is the seed's extrapolation made general: on the seed's 2x2 example the samples for a
+/// are B1 and B(e), collinear with a, giving B(a) = B1 + (B1 - B(e)); for b they are B1, B2, B(e),
+/// giving B1 + B2 - B(e) = (B(a) + B(c)) / 2. It is exact for every linear field on any grid of
+/// quads or triangles, which "mean of per-element extrapolations B_f + (B_f - mean interior)" is
+/// not (on a 3x3 grid that rule puts a border vertex next to a grid corner a quarter of an element
+/// off). Where S's samples leave the value open (one sample, or a line missing the vertex) the
+/// elements around S's corners join the samples; an element alone keeps its own radiance.
+/// Values are clamped at zero per channel. Elements of one smooth surface get equal sets, so their
+/// shared corners get one value and the colours join without seams.
+#include "radiosity/interpolation.h"
+
+#include "weld.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace radiosity {
+namespace {
+
+/// Slots, their welded vertices and compatible sets; slot index = 4 e + k.
+class Slots {
+public:
+    Slots(const Elements& elements, const int32_t* material, float hard_edge_angle)
+        : elements_(elements), material_(material), cos_hard_(std::cos(hard_edge_angle) - 1e-6f) {
+        std::size_t welds = 0;
+        weld_ = detail::weld_points(elements.vertices, detail::weld_tolerance(elements.vertices), welds);
+        // Slots incident to each weld, as compressed rows.
+        std::vector<int32_t> start(welds + 1, 0);
+        for (std::size_t e = 0; e < size(); ++e)
+            for (int k = 0; k < corner_count(e); ++k) ++start[weld(e, k) + 1];
+        for (std::size_t w = 0; w < welds; ++w) start[w + 1] += start[w];
+        std::vector<int32_t> incident(start[welds]);
+        std::vector<int32_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t e = 0; e < size(); ++e)
+            for (int k = 0; k < corner_count(e); ++k) incident[fill[weld(e, k)]++] = slot(e, k);
+        // Compatible set and border flag of every slot.
+        set_start_.assign(4 * size() + 1, 0);
+        border_.assign(4 * size(), false);
+        for (std::size_t e = 0; e < size(); ++e) {
+            for (int k = 0; k < 4; ++k) {
+                const int32_t s = slot(e, k);
+                if (k < corner_count(e)) {
+                    const int32_t w = weld(e, k);
+                    for (int32_t t = start[w]; t < start[w + 1]; ++t)
+                        if (compatible(e, element_of(incident[t]))) set_.push_back(incident[t]);
+                }
+                set_start_[s + 1] = static_cast<int32_t>(set_.size());
+                if (k < corner_count(e)) border_[s] = has_single_edge(s);
+            }
+        }
+    }
+
+    std::size_t size() const { return elements_.size(); }
+    int corner_count(std::size_t e) const { return elements_.is_triangle(e) ? 3 : 4; }
+    static int32_t slot(std::size_t e, int k) { return static_cast<int32_t>(4 * e) + k; }
+    static std::size_t element_of(int32_t s) { return static_cast<std::size_t>(s / 4); }
+    static int corner_of(int32_t s) { return s % 4; }
+    int32_t weld(std::size_t e, int k) const { return weld_[elements_.corners[e][k]]; }
+    bool border(int32_t s) const { return border_[s]; }
+
+    /// The slots of S: the compatible elements at this slot's vertex, with their corner there.
+    const int32_t* set_begin(int32_t s) const { return set_.data() + set_start_[s]; }
+    const int32_t* set_end(int32_t s) const { return set_.data() + set_start_[s + 1]; }
+
+    /// Whether an edge at this slot's vertex is used by only one element of S.
+    bool has_single_edge(int32_t s) const {
+        std::vector<int32_t> ends;  // far-end welds of every edge at the vertex, over S
+        for (const int32_t* t = set_begin(s); t != set_end(s); ++t) {
+            const std::size_t f = element_of(*t);
+            const int m = corner_count(f), kf = corner_of(*t);
+            ends.push_back(weld(f, (kf + 1) % m));
+            ends.push_back(weld(f, (kf + m - 1) % m));
+        }
+        for (const int32_t a : ends)
+            if (std::count(ends.begin(), ends.end(), a) == 1) return true;
+        return false;
+    }
+
+private:
+    bool compatible(std::size_t e, std::size_t f) const {
+        if (glm::dot(elements_.normal[e], elements_.normal[f]) < cos_hard_) return false;
+        return material_ == nullptr || material_[elements_.polygon[e]] == material_[elements_.polygon[f]];
+    }
+
+    const Elements& elements_;
+    const int32_t* material_;
+    float cos_hard_;
+    std::vector<int32_t> weld_;
+    std::vector<int32_t> set_start_, set_;
+    std::vector<bool> border_;
+};
+
+Rgb mean_radiance(const Slots& slots, int32_t s, const std::vector<Rgb>& radiance) {
+    Rgb sum(0.0);
+    for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t) sum += radiance[Slots::element_of(*t)];
+    return sum / double(slots.set_end(s) - slots.set_begin(s));
+}
+
+/// Samples for a border slot's plane: element centres with their radiance, interior corners with
+/// their step-1 value, each element and each vertex once.
+struct Samples {
+    std::vector<Vec3> position;
+    std::vector<Rgb> value;
+    std::vector<std::size_t> elements_taken;
+    std::vector<int32_t> welds_taken;
+
+    void add_element(const Elements& elements, const Slots& slots, std::size_t f, const std::vector<Rgb>& radiance,
+                     const std::vector<Rgb>& corner_value) {
+        if (std::find(elements_taken.begin(), elements_taken.end(), f) != elements_taken.end()) return;
+        elements_taken.push_back(f);
+        position.push_back(elements.centre[f]);
+        value.push_back(radiance[f]);
+        for (int k = 0; k < slots.corner_count(f); ++k) {
+            const int32_t corner = Slots::slot(f, k), w = slots.weld(f, k);
+            if (slots.border(corner) || std::find(welds_taken.begin(), welds_taken.end(), w) != welds_taken.end())
+                continue;
+            welds_taken.push_back(w);
+            position.push_back(elements.vertices[elements.corners[f][k]]);
+            value.push_back(corner_value[corner]);
+        }
+    }
+};
+
+/// Least-squares plane through the samples, evaluated at `at`; positions are measured in the plane
+/// perpendicular to `normal`. Where the samples are collinear the gradient across their line is
+/// taken as zero (the pseudo-inverse). Returns whether the samples determine the value at `at`:
+/// they span the plane, or lie on one line through `at`.
+bool fit_plane(const Samples& samples, const Vec3& at, const Vec3& normal, Rgb& out) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
+    const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 t1 = glm::normalize(glm::cross(n, helper)), t2 = glm::cross(n, t1);
+    const std::size_t count = samples.position.size();
+    std::vector<glm::dvec2> x(count);
+    glm::dvec2 x_mean(0.0);
+    Rgb f_mean(0.0);
+    for (std::size_t k = 0; k < count; ++k) {
+        const glm::dvec3 d = glm::dvec3(samples.position[k]) - glm::dvec3(at);
+        x[k] = glm::dvec2(glm::dot(d, t1), glm::dot(d, t2));
+        x_mean += x[k] / double(count);
+        f_mean += samples.value[k] / double(count);
+    }
+    double a = 0, b = 0, c = 0;  // covariance of positions [[a, b], [b, c]]
+    Rgb gx(0.0), gy(0.0);        // covariance of position and value, per channel
+    for (std::size_t k = 0; k < count; ++k) {
+        const glm::dvec2 d = x[k] - x_mean;
+        a += d.x * d.x;
+        b += d.x * d.y;
+        c += d.y * d.y;
+        gx += d.x * (samples.value[k] - f_mean);
+        gy += d.y * (samples.value[k] - f_mean);
+    }
+    const double trace = a + c, det = a * c - b * b;
+    Rgb grad_x(0.0), grad_y(0.0);
+    bool determined = true;
+    if (det > 1e-10 * trace * trace) {
+        grad_x = (c * gx - b * gy) / det;
+        grad_y = (a * gy - b * gx) / det;
+    } else if (trace > 0.0) {  // rank one: the samples lie along u
+        const glm::dvec2 u = glm::normalize(a >= c ? glm::dvec2(a, b) : glm::dvec2(b, c));
+        const Rgb along = (u.x * gx + u.y * gy) / trace;
+        grad_x = u.x * along;
+        grad_y = u.y * along;
+        const double off_line = std::abs(u.x * x_mean.y - u.y * x_mean.x);
+        determined = off_line <= 1e-3 * std::sqrt(trace / double(count));
+    } else {
+        determined = glm::length(x_mean) == 0.0;
+    }
+    out = f_mean - x_mean.x * grad_x - x_mean.y * grad_y;
+    return determined;
+}
+
+/// Step 2: the plane through what S knows, evaluated at this slot's vertex. When S's samples leave
+/// the value open (a lone triangle at a grid corner), the elements around S's corners join in.
+Rgb extrapolate(const Elements& elements, const Slots& slots, int32_t s, const std::vector<Rgb>& radiance,
+                const std::vector<Rgb>& value) {
+    const std::size_t e = Slots::element_of(s);
+    const Vec3& at = elements.vertices[elements.corners[e][Slots::corner_of(s)]];
+    Samples samples;
+    for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t)
+        samples.add_element(elements, slots, Slots::element_of(*t), radiance, value);
+    Rgb out;
+    if (fit_plane(samples, at, elements.normal[e], out)) return out;
+    for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t) {
+        const std::size_t f = Slots::element_of(*t);
+        for (int k = 0; k < slots.corner_count(f); ++k) {
+            const int32_t corner = Slots::slot(f, k);
+            for (const int32_t* g = slots.set_begin(corner); g != slots.set_end(corner); ++g)
+                samples.add_element(elements, slots, Slots::element_of(*g), radiance, value);
+        }
+    }
+    fit_plane(samples, at, elements.normal[e], out);
+    return out;
+}
+
+}  // namespace
+
+CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
+                                 const int32_t* material, float hard_edge_angle) {
+    const Slots slots(elements, material, hard_edge_angle);
+    const std::size_t n = elements.size();
+    std::vector<Rgb> value(4 * n, Rgb(0.0));
+    for (std::size_t e = 0; e < n; ++e)  // step 1
+        for (int k = 0; k < slots.corner_count(e); ++k) {
+            const int32_t s = Slots::slot(e, k);
+            if (!slots.border(s)) value[s] = mean_radiance(slots, s, radiance);
+        }
+    for (std::size_t e = 0; e < n; ++e)  // step 2
+        for (int k = 0; k < slots.corner_count(e); ++k) {
+            const int32_t s = Slots::slot(e, k);
+            if (slots.border(s)) value[s] = extrapolate(elements, slots, s, radiance, value);
+        }
+
+    CornerColors colors;
+    colors.element_corner.resize(4 * n);
+    for (std::size_t s = 0; s < 4 * n; ++s) colors.element_corner[s] = glm::max(value[s], Rgb(0.0));
+
+    // Input corners: any slot on the element vertex holding the polygon's corner (all elements of
+    // one polygon share its compatible set there, hence its value).
+    std::vector<int32_t> vertex_slot(elements.vertices.size(), -1);
+    for (std::size_t e = 0; e < n; ++e)
+        for (int k = 0; k < slots.corner_count(e); ++k) vertex_slot[elements.corners[e][k]] = Slots::slot(e, k);
+    colors.input_corner.assign(elements.corner_vertex.size(), Rgb(0.0));
+    for (std::size_t c = 0; c < elements.corner_vertex.size(); ++c) {
+        const int32_t v = elements.corner_vertex[c];
+        if (v >= 0 && vertex_slot[v] >= 0) colors.input_corner[c] = colors.element_corner[vertex_slot[v]];
+    }
+    return colors;
+}
+
+}  // namespace radiosity
