@@ -37,10 +37,9 @@ uint16_t form_bit(int a, float c1, int b, float c2) {
 }
 
 uint16_t outcode(const Vec3& p) {
-    const float forms[kForms] = {p.x - p.y, p.x + p.y, p.x - p.z, p.x + p.z, p.y - p.z, p.y + p.z};
-    uint16_t code = p.z <= 0.0f ? kBelow : 0;
-    for (int k = 0; k < kForms; ++k) code |= (forms[k] > 0.0f ? 1u : 0u) << (2 * k) | (forms[k] < 0.0f ? 2u : 0u) << (2 * k);
-    return code;
+    auto bits = [](float form, unsigned k) { return (form > 0.0f ? 1u << (2 * k) : 0u) | (form < 0.0f ? 2u << (2 * k) : 0u); };
+    return static_cast<uint16_t>(bits(p.x - p.y, 0) | bits(p.x + p.y, 1) | bits(p.x - p.z, 2) | bits(p.x + p.z, 3) |
+                                 bits(p.y - p.z, 4) | bits(p.y + p.z, 5) | (p.z <= 0.0f ? kBelow : 0u));
 }
 
 /// Bits meaning "outside face f": x > z, -x > z, y > z, -y > z in the face's coordinates.
@@ -65,6 +64,21 @@ struct Edge {
     bool owns_zero;
 };
 
+/// ceil(v), at least `lo`; with ceil/floor as library calls on baseline x86-64, this is cheaper.
+int ceil_at_least(float v, int lo) {
+    if (!(v > float(lo))) return lo;
+    if (v > 1e8f) return 100000000;
+    const int t = static_cast<int>(v);
+    return t + (float(t) < v ? 1 : 0);
+}
+
+/// floor(v), at most `hi`; below zero gives -1 (an empty range).
+int floor_at_most(float v, int hi) {
+    if (!(v < float(hi))) return hi;
+    if (v < 0.0f) return -1;
+    return static_cast<int>(v);
+}
+
 Edge make_edge(const Vec3& coefficient) {
     return {coefficient.x, coefficient.y, coefficient.z,
             coefficient.x > 0.0f || (coefficient.x == 0.0f && coefficient.y > 0.0f)};
@@ -87,9 +101,8 @@ struct Hemicube::Impl {
                 int32_t exclude);
     template <int K>
     void draw(const Elements& elements, int32_t e, uint8_t face_set, const Vec3& eye_local);
-    template <int K>
-    void rasterise(int f, const std::array<Vec3, K>& corner, const std::array<Vec3, K>& edge, const Vec3& depth,
-                   int32_t id);
+    template <int K, int F>
+    void rasterise(const std::array<Vec3, K>& corner, const std::array<Vec3, K>& edge, const Vec3& depth, int32_t id);
 };
 
 void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const std::array<Vec3, 3>& frame,
@@ -105,8 +118,10 @@ void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const 
     local.resize(vertex_count);
     code.resize(vertex_count);
     for (std::size_t v = 0; v < vertex_count; ++v) {
-        const Vec3 d = elements.vertices[v] - origin;
-        local[v] = Vec3(glm::dot(frame[0], d), glm::dot(frame[1], d), glm::dot(frame[2], d));
+        const float dx = elements.vertices[v].x - origin.x, dy = elements.vertices[v].y - origin.y,
+                    dz = elements.vertices[v].z - origin.z;
+        local[v] = Vec3(frame[0].x * dx + frame[0].y * dy + frame[0].z * dz, frame[1].x * dx + frame[1].y * dy + frame[1].z * dz,
+                        frame[2].x * dx + frame[2].y * dy + frame[2].z * dz);
         code[v] = outcode(local[v]);
     }
     std::array<uint16_t, 6> reject{};
@@ -136,21 +151,27 @@ void Hemicube::Impl::draw(const Elements& elements, int32_t e, uint8_t face_set,
     const Vec3 normal(glm::dot(basis[0], nw), glm::dot(basis[1], nw), glm::dot(basis[2], nw));
     // Distance of the element's plane from the eye, negative when the eye sees its front.
     const float plane = glm::dot(normal, centre);
-    if (!(std::abs(plane) > 1e-6f * glm::length(centre))) return;  // edge-on: covers no area
+    if (!(plane * plane > 1e-12f * glm::dot(centre, centre))) return;  // edge-on: covers no area
     const float side = plane < 0.0f ? -1.0f : 1.0f;
     std::array<Vec3, K> corner, edge;
     for (int k = 0; k < K; ++k) corner[k] = local[elements.corners[e][k]];
     for (int k = 0; k < K; ++k) edge[k] = side * glm::cross(corner[k], corner[(k + 1) % K]);
     const Vec3 depth = normal / plane;
     const int32_t id = plane < 0.0f ? e : -1;  // seen from behind: occludes, credited to nobody
-    for (int f = 0; f < layout.face_count; ++f)
-        if (face_set & (1u << f)) rasterise<K>(f, corner, edge, depth, id);
+    // One instance per face, so that the face's axis permutation is known at compile time.
+    if (face_set & 1u) rasterise<K, 0>(corner, edge, depth, id);
+    if (face_set & 2u) rasterise<K, 1>(corner, edge, depth, id);
+    if (face_set & 4u) rasterise<K, 2>(corner, edge, depth, id);
+    if (face_set & 8u) rasterise<K, 3>(corner, edge, depth, id);
+    if (face_set & 16u) rasterise<K, 4>(corner, edge, depth, id);
+    if (face_set & 32u) rasterise<K, 5>(corner, edge, depth, id);
 }
 
-template <int K>
-void Hemicube::Impl::rasterise(int f, const std::array<Vec3, K>& corner, const std::array<Vec3, K>& edge_vector,
+template <int K, int F>
+void Hemicube::Impl::rasterise(const std::array<Vec3, K>& corner, const std::array<Vec3, K>& edge_vector,
                                const Vec3& depth_vector, int32_t id) {
-    const cube::Face& face = cube::faces[f];
+    constexpr cube::Face face = cube::faces[F];
+    constexpr int f = F;
     // Pixel bounding box of the outline, clipped at the near plane z = epsilon where needed.
     std::array<Vec3, K> q;
     bool in_front = true;
@@ -181,10 +202,11 @@ void Hemicube::Impl::rasterise(int f, const std::array<Vec3, K>& corner, const s
     const float h = layout.cell_size(), x0 = -1.0f + 0.5f * h, y0 = layout.y_min(f) + 0.5f * h;
     // A small margin so that rounding in the projection never drops a pixel the edges include.
     const float margin = 1e-3f;
-    const int col_lo = std::max(0, static_cast<int>(std::ceil((x_lo - x0) / h - margin)));
-    const int col_hi = std::min(n - 1, static_cast<int>(std::floor((x_hi - x0) / h + margin)));
-    const int row_lo = std::max(0, static_cast<int>(std::ceil((y_lo - y0) / h - margin)));
-    const int row_hi = std::min(rows - 1, static_cast<int>(std::floor((y_hi - y0) / h + margin)));
+    const float inv_h = 1.0f / h;
+    const int col_lo = ceil_at_least((x_lo - x0) * inv_h - margin, 0);
+    const int col_hi = floor_at_most((x_hi - x0) * inv_h + margin, n - 1);
+    const int row_lo = ceil_at_least((y_lo - y0) * inv_h - margin, 0);
+    const int row_hi = floor_at_most((y_hi - y0) * inv_h + margin, rows - 1);
     if (col_lo > col_hi || row_lo > row_hi) return;
 
     std::array<Edge, K> edge;
@@ -198,20 +220,20 @@ void Hemicube::Impl::rasterise(int f, const std::array<Vec3, K>& corner, const s
         std::array<float, K> row_value;
         for (int k = 0; k < K; ++k) row_value[k] = edge[k].b * y + edge[k].c;
         const float depth_row = depth.y * y + depth.z;
+        float* z_row = z_buffer + std::size_t(r) * n;
+        int32_t* item_row = items + std::size_t(r) * n;
+        // Branch-free, so that the compiler can vectorise the row.
         for (int col = col_lo; col <= col_hi; ++col) {
             const float x = x0 + col * h;
             bool inside = true;
             for (int k = 0; k < K; ++k) {
                 const float value = edge[k].a * x + row_value[k];
-                inside = inside && (value > 0.0f || (value == 0.0f && edge[k].owns_zero));
+                inside &= (value > 0.0f) | ((value >= 0.0f) & edge[k].owns_zero);
             }
-            if (!inside) continue;
             const float z = depth.x * x + depth_row;
-            const std::size_t cell = std::size_t(r) * n + col;
-            if (z > z_buffer[cell]) {
-                z_buffer[cell] = z;
-                items[cell] = id;
-            }
+            const bool nearer = inside & (z > z_row[col]);
+            z_row[col] = nearer ? z : z_row[col];
+            item_row[col] = nearer ? id : item_row[col];
         }
     }
 }
@@ -236,18 +258,39 @@ void Hemicube::accumulate(const std::vector<float>& cell_weight, SparseRow& row)
     Impl& m = *impl_;
     if (cell_weight.size() != m.item.size()) throw InputError("accumulate: weights do not match the last render");
     m.touched.clear();
+    // Neighbouring cells mostly see the same element: add runs locally before touching the sums.
+    int32_t run_id = -1;
+    double run_sum = 0.0;
+    auto flush = [&] {
+        if (run_id < 0) return;
+        if (m.sum[run_id] == 0.0) m.touched.push_back(run_id);
+        m.sum[run_id] += run_sum;
+    };
     for (std::size_t cell = 0; cell < m.item.size(); ++cell) {
         const int32_t id = m.item[cell];
-        if (id < 0) continue;
-        if (m.sum[id] == 0.0) m.touched.push_back(id);
-        m.sum[id] += cell_weight[cell];
+        if (id != run_id) {
+            flush();
+            run_id = id;
+            run_sum = 0.0;
+        }
+        run_sum += cell_weight[cell];
     }
-    std::sort(m.touched.begin(), m.touched.end());
+    flush();
     row.clear();
-    for (int32_t id : m.touched) {
+    row.col.reserve(m.touched.size());
+    row.val.reserve(m.touched.size());
+    auto emit = [&](int32_t id) {
         row.col.push_back(id);
         row.val.push_back(static_cast<float>(m.sum[id]));
         m.sum[id] = 0.0;
+    };
+    // Columns ascending: sort the touched ids, or scan all when most elements were seen.
+    if (m.touched.size() * 16 > m.sum.size()) {
+        for (std::size_t id = 0; id < m.sum.size(); ++id)
+            if (m.sum[id] != 0.0) emit(static_cast<int32_t>(id));
+    } else {
+        std::sort(m.touched.begin(), m.touched.end());
+        for (int32_t id : m.touched) emit(id);
     }
 }
 
