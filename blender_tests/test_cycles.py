@@ -1,0 +1,101 @@
+"""The Cornell box baked by radiosity against Cycles' Combined bake to colour attributes, on the
+same mesh and corners: lit by an emitting mesh, by an area lamp, and by a point lamp. The lamp
+variants prove the add-on converts lamp power exactly as Cycles does.
+
+Cycles runs unbiased: bounces raised, clamping off, no denoising. It bakes in two halves with
+different seeds; their difference measures its own noise, which must be small beside the
+tolerance, and their mean is the reference."""
+
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import scenes  # noqa: E402
+
+args = harness.arguments()
+addon = harness.install_addon(args.addon_zip)
+
+SAMPLES_PER_HALF = 2048
+MAX_RELATIVE_RMS = 0.03
+MAX_MEAN_ERROR = 0.01
+MAX_CYCLES_NOISE = 0.01
+EMITTER_MATERIAL = 3
+
+
+def cycles_bake(obj, seed):
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    cycles = scene.cycles
+    cycles.device = "CPU"
+    cycles.samples = SAMPLES_PER_HALF
+    cycles.seed = seed
+    cycles.use_adaptive_sampling = False
+    cycles.use_denoising = False
+    cycles.max_bounces = cycles.diffuse_bounces = 128
+    cycles.glossy_bounces = cycles.transmission_bounces = cycles.volume_bounces = 0
+    cycles.transparent_max_bounces = 0
+    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
+    scene.render.bake.target = "VERTEX_COLORS"
+    name = "Cycles %d" % seed
+    attributes = obj.data.color_attributes
+    attributes.active_color = attributes.new(name, "FLOAT_COLOR", "CORNER")
+    for other in bpy.context.view_layer.objects:
+        other.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
+    return harness.corner_colors(obj.data, name)
+
+
+def compared_corners(mesh):
+    """Loops of the mesh that do not belong to the emitting opening (which only emits)."""
+    material = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("material_index", material)
+    total = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", total)
+    return np.repeat(material != EMITTER_MATERIAL, total)
+
+
+def compare(light):
+    scenes.clear_scene()
+    box = scenes.cornell_box(light)
+    halves = [cycles_bake(box, seed) for seed in (1, 2)]
+    reference = 0.5 * (halves[0] + halves[1])
+    summary = addon.bake(bpy.context.scene, element_size=0.0625, hemicube_resolution=256,
+                         method="GAUSS_SEIDEL", tolerance=1e-5)
+    baked = harness.corner_colors(box.data, "Radiosity")
+
+    keep = compared_corners(box.data)
+    reference, baked = reference[keep], baked[keep]
+    scale = np.sqrt(np.mean(reference ** 2))
+    noise = np.sqrt(np.mean((halves[0][keep] - halves[1][keep]) ** 2)) / 2 / scale
+    relative_rms = np.sqrt(np.mean((baked - reference) ** 2)) / scale
+    mean_error = baked.mean() / reference.mean() - 1
+    worst = np.abs(baked - reference).max(axis=1).argmax()
+    print("%s lamp: %d corners, %d elements, Cycles noise %.2f%%, relative RMS %.2f%%, mean %+.2f%% "
+          "(radiosity %.5f, Cycles %.5f), largest difference %.4f at a corner where Cycles has %s"
+          % (light, keep.sum(), summary["elements"], 100 * noise, 100 * relative_rms, 100 * mean_error,
+             baked.mean(), reference.mean(), np.abs(baked - reference).max(), reference[worst]), flush=True)
+    assert noise < MAX_CYCLES_NOISE, "Cycles is too noisy to judge: %.2f%%" % (100 * noise)
+    assert relative_rms <= MAX_RELATIVE_RMS
+    assert abs(mean_error) <= MAX_MEAN_ERROR
+
+
+def test_emitting_mesh():
+    compare("MESH")
+
+
+def test_area_lamp():
+    compare("AREA")
+
+
+def test_point_lamp():
+    compare("POINT")
+
+
+harness.run(test_emitting_mesh, test_area_lamp, test_point_lamp)
