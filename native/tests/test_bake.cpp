@@ -166,6 +166,19 @@ TEST(Bake, SolversMatchDenseDirectSolveOfTheHemicubeMatrix) {
                 max_relative_error(truth_G, truth_F));
 }
 
+TEST(Bake, NothingLeftAfterSkippingGivesZeros) {
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0}, Rgb(0.5), Rgb(1.0));  // zero area
+    for (Method m : methods) {
+        const BakeResult r = bake(scene.input(), settings_for(m, 0.1f));
+        ASSERT_EQ(r.build.skipped.size(), 1u);
+        EXPECT_TRUE(r.solve.radiance.empty());
+        EXPECT_TRUE(r.solve.converged);
+        ASSERT_EQ(r.colors.input_corner.size(), 4u);
+        for (const Rgb& c : r.colors.input_corner) EXPECT_EQ(c, Rgb(0.0));
+    }
+}
+
 TEST(Bake, ProgressPassesThroughAndCancels) {
     const test::SceneArrays box = test::closed_box(Vec3(1.0f), Rgb(0.5), Rgb(1.0));
     for (Method m : methods) {
