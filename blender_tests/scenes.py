@@ -161,7 +161,7 @@ def camera_for_cornell_box():
     camera = bpy.data.cameras.new("Camera")
     camera.lens = 35.0
     obj = bpy.data.objects.new("Camera", camera)
-    obj.location = (0.5, -1.35, 0.5)
+    obj.location = (0.5, -1.02, 0.5)
     obj.rotation_euler = (math.pi / 2, 0.0, 0.0)
     bpy.context.scene.collection.objects.link(obj)
     bpy.context.scene.camera = obj
