@@ -91,10 +91,10 @@ def test_furnace():
     scenes.clear_scene()
     material = furnace_material(rho, emitted)
     # A closed unit cube with inward normals, each side a 4 x 4 grid.
-    sides = [
-        ((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
-        ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
-        ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    sides = [  # (origin, u, v) with u x v pointing into the box
+        ((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 1), (0, 1, 0), (1, 0, 0)),
+        ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, 1)),
+        ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0)),
     ]
     box = scenes.mesh_object("Furnace", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in sides], [material])
     summary = addon.bake(bpy.context.scene, element_size=0.125, method="GAUSS_SEIDEL", tolerance=1e-6)
