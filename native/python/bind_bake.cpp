@@ -49,7 +49,7 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      float element_size, int resolution, const std::string& method, double tolerance,
-                     int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
+                     int max_iterations, float hard_edge_angle, bool ambient,
                      const py::object& progress) {
     require_shape(positions, "positions", -1, 3);
     require_shape(face_offsets, "face_offsets", -1, 0);
@@ -84,7 +84,6 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.solve.max_iterations = max_iterations;
     settings.solve.ambient = ambient;
     settings.hard_edge_angle = hard_edge_angle;
-    settings.lights = parse_lights(lights);
 
     ProgressBridge bridge(progress);
     BakeResult result;
@@ -135,7 +134,7 @@ void bind_bake(py::module_& m) {
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "resolution"_a = 128,
           "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
-          "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
+          "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false,
           "progress"_a = py::none());
 }
 

@@ -2,6 +2,8 @@
 /// @brief The `_core` extension module: a thin layer over the core, arrays in and arrays out.
 #include "bindings.h"
 
+#include "radiosity/types.h"
+
 namespace py = pybind11;
 
 PYBIND11_MODULE(_core, m) {
