@@ -2,8 +2,8 @@
 /// @brief The surface bake pipeline: elements, form factors (stored or on demand), solve, corners.
 #include "radiosity/bake.h"
 
+#include <algorithm>
 #include <chrono>
-#include <memory>
 
 namespace radiosity {
 namespace {
@@ -16,6 +16,11 @@ double seconds_since(Clock::time_point start) {
 
 }  // namespace
 
+std::size_t matrix_bytes_bound(std::size_t element_count, int resolution) {
+    const std::size_t N = static_cast<std::size_t>(std::max(resolution, 0));
+    return element_count * std::min(element_count, 3 * N * N) * (sizeof(float) + sizeof(int32_t));
+}
+
 BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     BakeResult result;
 
@@ -24,23 +29,24 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     const Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
-    // Gathering sweeps read every row each sweep, so they store F; progressive refinement reads
-    // each row about once per sweep in shooting order, so it renders rows on demand (memory O(n)).
+    // Stored, F is computed in parallel and read cheaply by every sweep or shot; progressive
+    // refinement also holds F^T to shoot exact columns. Beyond the budget, rows are rendered on
+    // demand (memory O(n)).
+    const bool progressive = settings.solve.method == Method::Progressive;
+    const std::size_t copies = progressive ? 2 : 1;
+    result.matrix_stored = matrix_bytes_bound(elements.size(), settings.resolution) <=
+                           settings.matrix_budget_bytes / copies;
     start = Clock::now();
-    SparseMatrix matrix;
-    std::unique_ptr<RowSource> rows;
-    if (settings.solve.method == Method::Progressive) {
-        rows = std::make_unique<HemicubeRows>(elements, settings.resolution);
+    if (result.matrix_stored) {
+        const SparseMatrix F = compute_form_factors(elements, settings.resolution, progress);
+        result.matrix_nonzeros = F.nonzeros();
+        result.matrix_bytes = copies * F.bytes();
+        result.seconds_form_factors = seconds_since(start);
+        result.solve = solve(elements, F, settings.solve, progress);
     } else {
-        matrix = compute_form_factors(elements, settings.resolution, progress);
-        result.matrix_nonzeros = matrix.nonzeros();
-        result.matrix_bytes = matrix.bytes();
-        rows = std::make_unique<StoredRows>(matrix);
+        HemicubeRows rows(elements, settings.resolution);
+        result.solve = solve(elements, rows, settings.solve, progress);  // includes rendering rows
     }
-    result.seconds_form_factors = seconds_since(start);
-
-    // For progressive refinement this includes rendering the rows it shoots.
-    result.solve = solve(elements, *rows, settings.solve, progress);
     result.seconds_solve = result.solve.seconds;
 
     start = Clock::now();

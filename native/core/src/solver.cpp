@@ -57,22 +57,47 @@ void DivergenceGuard::check(double residual) {
 
 }  // namespace detail
 
-SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings& settings,
-                  const ProgressFn& progress) {
+namespace {
+
+/// Times the run and answers zero emission (L = 0 solves any system exactly) before dispatching.
+template <class Dispatch>
+SolveResult timed_solve(const Elements& elements, Dispatch&& dispatch) {
     const auto start = std::chrono::steady_clock::now();
     const double emitted = detail::emitted_norm(elements);
     SolveResult result;
     if (emitted == 0.0) {
-        // Nothing emits: L = 0 solves the system exactly.
         result.radiance.assign(elements.size(), Rgb(0.0));
         result.converged = true;
-    } else if (settings.method == Method::Progressive) {
-        result = detail::solve_progressive(elements, rows, settings, progress, emitted);
     } else {
-        result = detail::solve_sweeps(elements, rows, settings, progress, emitted);
+        result = dispatch(emitted);
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
+}
+
+}  // namespace
+
+SolveResult solve(const Elements& elements, const SparseMatrix& F, const SolveSettings& settings,
+                  const ProgressFn& progress) {
+    return timed_solve(elements, [&](double emitted) {
+        if (settings.method == Method::Progressive) {
+            StoredColumns columns(F);
+            return detail::solve_progressive(elements, columns, settings, progress, emitted);
+        }
+        StoredRows rows(F);
+        return detail::solve_sweeps(elements, rows, settings, progress, emitted);
+    });
+}
+
+SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings& settings,
+                  const ProgressFn& progress) {
+    return timed_solve(elements, [&](double emitted) {
+        if (settings.method == Method::Progressive) {
+            ReciprocalColumns columns(elements, rows);
+            return detail::solve_progressive(elements, columns, settings, progress, emitted);
+        }
+        return detail::solve_sweeps(elements, rows, settings, progress, emitted);
+    });
 }
 
 double relative_residual(const Elements& elements, RowSource& rows, const std::vector<Rgb>& radiance) {

@@ -2,6 +2,7 @@
 /// @brief Pieces the solvers share: the residual norm, progress reports, the divergence guard.
 #pragma once
 
+#include "radiosity/shooting.h"
 #include "radiosity/solver.h"
 
 #include <cmath>
@@ -47,8 +48,8 @@ private:
 SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveSettings& settings,
                          const ProgressFn& progress, double emitted);
 
-/// Progressive refinement, one row per shot; `emitted` = emitted_norm(elements) > 0.
-SolveResult solve_progressive(const Elements& elements, RowSource& rows, const SolveSettings& settings,
+/// Progressive refinement, one column of M per shot; `emitted` = emitted_norm(elements) > 0.
+SolveResult solve_progressive(const Elements& elements, ShootingSource& columns, const SolveSettings& settings,
                               const ProgressFn& progress, double emitted);
 
 }  // namespace radiosity::detail

@@ -1,17 +1,19 @@
 /// @file solver_progressive.cpp
 /// @brief Progressive refinement (seed 23.6): shoot the unshot radiance U_i of the element with the
-/// largest power A_i (U_r + U_g + U_b), one row of F at a time, so memory stays O(n).
+/// largest power A_i (U_r + U_g + U_b), one column of M at a time (see shooting.h).
 ///
-/// Shooting row i uses reciprocity, dL_j = rho_j F_ij (A_i / A_j) U_i, so the system solved is
-/// L = E + rho G L with G_ji = F_ij A_i / A_j (G = F when the rows are reciprocal).
+/// Shooting u from i adds dL_j = rho_j M_ji u to every L_j, so the system solved is
+/// L = E + rho M L: M = F with StoredColumns, M = G (G_ji = F_ij A_i / A_j) with ReciprocalColumns.
 ///
-/// Residual, exactly: with L = U = E at the start, every shot keeps r = E - (I - rho G) L = rho G U
-/// (shooting u from i adds rho G e_i u to L and moves u from U_i to rho G e_i u). U >= 0, so
-///   |r| = sum_j A_j sum_i rho_j G_ji U_i = sum_i A_i U_i . s_i,   s_i = sum_j rho_j F_ij,
-/// a sum over row i alone. s_i is exact once row i has been rendered; before that we use the bound
-/// s_i <= max_j rho_j (per channel), valid for rows summing to at most 1 (hemi-cube rows do). The
-/// reported residual is therefore an upper bound until every element holding unshot radiance has
-/// shot once, and exact afterwards.
+/// Residual, exactly: with L = U = E at the start, every shot keeps r = E - (I - rho M) L = rho M U
+/// (shooting u from i adds rho M e_i u to L and moves u from U_i to rho M e_i u). U >= 0, so
+///   |r| = sum_j A_j sum_i rho_j M_ji U_i = sum_i A_i U_i . s_i,   s_i = sum_j rho_j A_j M_ji / A_i,
+/// a sum over column i alone. Stored columns are all read up front, so s_i and the residual are
+/// exact from the first shot. Otherwise s_i is exact once column i has been read; before that we
+/// use the bound s_i <= max_j rho_j (per channel), valid when sum_j A_j M_ji / A_i <= 1 (for
+/// reciprocity columns that is the row sum of F, at most 1 for hemi-cube rows). The reported
+/// residual is then an upper bound until every element holding unshot radiance has shot once, and
+/// exact afterwards.
 #include "solver_detail.h"
 
 #include <glm/common.hpp>
@@ -74,9 +76,19 @@ void ambient_preview(const Elements& elements, const std::vector<Rgb>& L, const 
     for (std::size_t i = 0; i < L.size(); ++i) preview[i] = L[i] + elements.reflectance[i] * ambient;
 }
 
+/// s_i = sum_j rho_j A_j M_ji / A_i from column i of M.
+Rgb residual_weight(const Elements& elements, int32_t i, const SparseColumn& column) {
+    Rgb s(0.0);
+    for (std::size_t k = 0; k < column.row.size(); ++k) {
+        const int32_t j = column.row[k];
+        s += elements.reflectance[j] * (double(elements.area[j]) * column.val[k]);
+    }
+    return s / double(elements.area[i]);
+}
+
 }  // namespace
 
-SolveResult solve_progressive(const Elements& elements, RowSource& rows, const SolveSettings& settings,
+SolveResult solve_progressive(const Elements& elements, ShootingSource& columns, const SolveSettings& settings,
                               const ProgressFn& progress, double emitted) {
     const std::size_t n = elements.size();
     const std::size_t cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0)) * n;
@@ -90,13 +102,18 @@ SolveResult solve_progressive(const Elements& elements, RowSource& rows, const S
     SolveResult result;
     std::vector<Rgb> L = elements.emission;
     std::vector<Rgb> U = elements.emission;
-    std::vector<Rgb> s(n, rho_max);  // bound until the element's row is known
+    std::vector<Rgb> s(n, rho_max);  // bound until the element's column is known
+    SparseColumn column;
+    if (columns.stored())
+        for (std::size_t i = 0; i < n; ++i) {
+            columns.column(static_cast<int32_t>(i), column);
+            s[i] = residual_weight(elements, static_cast<int32_t>(i), column);
+        }
     std::vector<double> power(n);
     for (std::size_t i = 0; i < n; ++i) power[i] = elements.area[i] * channel_sum(U[i]);
     MaxTree shooter(power);
     double residual = unshot_residual(elements, U, s);  // kept up to date shot by shot
     std::vector<Rgb> preview;
-    SparseRow row;
 
     auto record = [&] {  // resynchronise the running sum (no drift) and log the sweep
         residual = unshot_residual(elements, U, s);
@@ -120,22 +137,19 @@ SolveResult solve_progressive(const Elements& elements, RowSource& rows, const S
             break;
         }
         const Rgb u = U[i];
-        const double A_i = elements.area[i];
-        residual -= A_i * glm::dot(u, s[i]);
+        residual -= elements.area[i] * glm::dot(u, s[i]);
         U[i] = Rgb(0.0);
         shooter.set(i, 0.0);
 
-        rows.row(i, row);
-        s[i] = Rgb(0.0);
-        for (std::size_t k = 0; k < row.col.size(); ++k) s[i] += double(row.val[k]) * elements.reflectance[row.col[k]];
-        for (std::size_t k = 0; k < row.col.size(); ++k) {
-            const int32_t j = row.col[k];
-            const double A_j = elements.area[j];
-            const Rgb dL = elements.reflectance[j] * (double(row.val[k]) * A_i / A_j) * u;
+        columns.column(i, column);
+        s[i] = residual_weight(elements, i, column);
+        for (std::size_t k = 0; k < column.row.size(); ++k) {
+            const int32_t j = column.row[k];
+            const Rgb dL = elements.reflectance[j] * column.val[k] * u;
             L[j] += dL;
             U[j] += dL;
-            residual += A_j * glm::dot(dL, s[j]);
-            shooter.set(j, A_j * channel_sum(U[j]));
+            residual += elements.area[j] * glm::dot(dL, s[j]);
+            shooter.set(j, elements.area[j] * channel_sum(U[j]));
         }
         ++shots;
         if (!std::isfinite(residual)) guard.check(residual);

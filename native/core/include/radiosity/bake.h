@@ -1,5 +1,14 @@
 /// @file bake.h
 /// @brief The whole surface bake: elements, form factors, solve, corner colours.
+///
+/// Which system is solved depends on whether F fits `matrix_budget_bytes`:
+///  - stored (the budget holds F; progressive refinement needs F and F^T, twice that): every
+///    method solves L = E + rho F L exactly; progressive refinement shoots columns of F.
+///  - on demand (beyond the budget): rows are rendered one hemi-cube at a time, memory O(n).
+///    Gauss-Seidel and Jacobi still solve with F, at one hemi-cube per element per sweep (serial,
+///    so slow: Jacobi needs about twice Gauss-Seidel's sweeps). Progressive refinement shoots by
+///    reciprocity and solves with G_ji = F_ij A_i / A_j instead (see solver.h): a known deviation
+///    of up to some percent next to shared edges, e.g. in a closed box furnace.
 #pragma once
 
 #include "radiosity/interpolation.h"
@@ -12,18 +21,25 @@ struct BakeSettings {
     int resolution = 128;            ///< hemi-cube cells per full face edge
     SolveSettings solve;
     float hard_edge_angle = 0.5236f; ///< radians (30 degrees)
+    /// Memory allowed for the stored matrix, judged by matrix_bytes_bound (2 GiB by default).
+    std::size_t matrix_budget_bytes = std::size_t(2) << 30;
 };
 
 struct BakeResult {
     BuildResult build;
     SolveResult solve;
     CornerColors colors;
+    bool matrix_stored = false;        ///< F stored (exact system) or rows rendered on demand
     std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
-    std::size_t matrix_bytes = 0;
+    std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
     double seconds_elements = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
 };
 
-/// Gauss-Seidel and Jacobi store the matrix; progressive refinement renders rows on demand.
+/// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at
+/// resolution N: N^2 on top, four sides of N^2 / 2), 8 bytes each (float value, int32 column).
+std::size_t matrix_bytes_bound(std::size_t element_count, int resolution);
+
+/// Stores F when it fits the budget, else renders rows on demand (see the top of this file).
 BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
 
 }  // namespace radiosity

@@ -1,6 +1,14 @@
 /// @file solver.h
 /// @brief Solvers of L = E + rho * F L (radiance units, RGB): Gauss-Seidel, Jacobi, progressive refinement.
 ///
+/// Which system each entry point solves:
+///  - solve(elements, F): all three methods solve L = E + rho F L with the stored F. Gauss-Seidel
+///    and Jacobi gather its rows; progressive refinement shoots its columns (StoredColumns).
+///  - solve(elements, rows): Gauss-Seidel and Jacobi gather rows of F, as above. Progressive
+///    refinement shoots columns derived from the rows by reciprocity (ReciprocalColumns), so it
+///    solves L = E + rho G L, G_ji = F_ij A_i / A_j: F only where rows are reciprocal, which
+///    centre-point hemi-cube rows are not next to shared edges. This is the O(n)-memory path.
+///
 /// One stopping rule for all: the relative residual |E - (I - rho F) L| / |E| falls below
 /// `tolerance`, or `max_iterations` is reached. The norm is the area-weighted L1 norm summed over
 /// RGB (emitted power), so that progressive refinement can evaluate it from its unshot power.
@@ -31,11 +39,18 @@ struct SolveResult {
     double seconds = 0.0;
 };
 
-/// Solves with the rows of `rows`. Progress phase "solve"; throws Cancelled.
+/// Solves L = E + rho F L with the stored F, whatever the method. Progressive refinement holds
+/// F^T besides F (twice the matrix's memory). Progress phase "solve"; throws Cancelled.
+SolveResult solve(const Elements& elements, const SparseMatrix& F, const SolveSettings& settings,
+                  const ProgressFn& progress = {});
+
+/// Solves with rows of F read one at a time: gathering solves with F, progressive refinement with
+/// G (reciprocity, see above). Progress phase "solve"; throws Cancelled.
 SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings& settings,
                   const ProgressFn& progress = {});
 
-/// Relative residual |E - (I - rho F) L| / |E| of `radiance`, as the solvers measure it.
+/// Relative residual |E - (I - rho F) L| / |E| of `radiance` with the rows of F, as the gathering
+/// solvers measure it (and progressive refinement on stored columns).
 double relative_residual(const Elements& elements, RowSource& rows, const std::vector<Rgb>& radiance);
 
 }  // namespace radiosity
