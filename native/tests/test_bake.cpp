@@ -228,17 +228,18 @@ TEST(Bake, NothingLeftAfterSkippingGivesZeros) {
 TEST(Bake, ProgressPassesThroughAndCancels) {
     // Form factors are a phase of their own only when the matrix is stored.
     const test::SceneArrays box = test::closed_box(Vec3(1.0f), Rgb(0.5), Rgb(1.0));
-    for (Method m : methods)
-    for (const std::size_t budget : {BakeSettings().matrix_budget_bytes, std::size_t(0)}) {
-        bool saw_solve = false, saw_form_factors = false;
-        auto progress = [&](const Progress& p) {
-            saw_solve |= std::string(p.phase) == "solve";
-            saw_form_factors |= std::string(p.phase) == "form_factors";
-            return !saw_solve;
-        };
-        EXPECT_THROW(bake(box.input(), settings_for(m, 0.25f, 32, 1e-8, budget), progress), Cancelled);
-        EXPECT_TRUE(saw_solve);
-        EXPECT_EQ(saw_form_factors, budget > 0) << int(m);
+    for (Method m : methods) {
+        for (const std::size_t budget : {BakeSettings().matrix_budget_bytes, std::size_t(0)}) {
+            bool saw_solve = false, saw_form_factors = false;
+            auto progress = [&](const Progress& p) {
+                saw_solve |= std::string(p.phase) == "solve";
+                saw_form_factors |= std::string(p.phase) == "form_factors";
+                return !saw_solve;
+            };
+            EXPECT_THROW(bake(box.input(), settings_for(m, 0.25f, 32, 1e-8, budget), progress), Cancelled);
+            EXPECT_TRUE(saw_solve);
+            EXPECT_EQ(saw_form_factors, budget > 0) << int(m);
+        }
     }
 }
 
