@@ -101,8 +101,17 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
     white, red, green = diffuse("White", WHITE), diffuse("Red", RED), diffuse("Green", GREEN)
     materials = [white, red, green]
     d = 1.0 / cells
+    blocks = (((0.5, 0.125), (0.875, 0.5), 3 * d),    # short block: corners (x, y), height
+              ((0.125, 0.5), (0.5, 0.875), 6 * d))    # tall block
+    floor_vertices, floor_quads = grid((0, 0, 0), (1, 0, 0), (0, 1, 0), cells, cells)   # normal +Z
+    # No floor under the blocks: faces hidden inside a solid would share their corners with the
+    # lit floor around it and darken it there (see docs/user-guide.md, "Hidden faces").
+    centers = floor_vertices[floor_quads].mean(axis=1)
+    hidden = np.zeros(len(floor_quads), dtype=bool)
+    for (x0, y0), (x1, y1), _ in blocks:
+        hidden |= (centers[:, 0] > x0) & (centers[:, 0] < x1) & (centers[:, 1] > y0) & (centers[:, 1] < y1)
     pieces = [
-        grid((0, 0, 0), (1, 0, 0), (0, 1, 0), cells, cells) + (0,),        # floor, normal +Z
+        (floor_vertices, floor_quads[~hidden], 0),
         grid((0, 1, 0), (1, 0, 0), (0, 0, 1), cells, cells) + (0,),        # back wall, normal -Y
         grid((0, 0, 0), (0, 1, 0), (0, 0, 1), cells, cells) + (1,),        # left wall (red), normal +X
         grid((1, 0, 0), (0, 0, 1), (0, 1, 0), cells, cells) + (2,),        # right wall (green), normal -X
@@ -118,8 +127,8 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
         if light == "MESH":
             materials.append(emission("Light", (1.0, 1.0, 1.0), radiance))
             pieces.append((ceiling_vertices, ceiling_quads[opening], 3))
-    pieces += _block((0.5, 0.125), (0.875, 0.5), 3 * d, d)   # short block
-    pieces += _block((0.125, 0.5), (0.5, 0.875), 6 * d, d)   # tall block
+    for corner0, corner1, height in blocks:
+        pieces += _block(corner0, corner1, height, d)
     box = mesh_object("Cornell Box", pieces, materials)
 
     opening_side = (hi - lo) * d

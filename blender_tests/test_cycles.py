@@ -66,7 +66,7 @@ def compare(light):
     box = scenes.cornell_box(light)
     halves = [cycles_bake(box, seed) for seed in (1, 2)]
     reference = 0.5 * (halves[0] + halves[1])
-    summary = addon.bake(bpy.context.scene, element_size=0.0625, hemicube_resolution=256,
+    summary = addon.bake(bpy.context.scene, element_size=0.03125, hemicube_resolution=256,
                          method="GAUSS_SEIDEL", tolerance=1e-5)
     baked = harness.corner_colors(box.data, "Radiosity")
 
