@@ -49,7 +49,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      float element_size, int resolution, const std::string& method, double tolerance,
-                     int max_iterations, float hard_edge_angle, bool ambient,
+                     int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
+                     std::size_t matrix_budget_bytes,
                      const py::object& progress) {
     require_shape(positions, "positions", -1, 3);
     require_shape(face_offsets, "face_offsets", -1, 0);
@@ -84,6 +85,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.solve.max_iterations = max_iterations;
     settings.solve.ambient = ambient;
     settings.hard_edge_angle = hard_edge_angle;
+    settings.lights = parse_lights(lights);
+    settings.matrix_budget_bytes = matrix_budget_bytes;
 
     ProgressBridge bridge(progress);
     BakeResult result;
@@ -100,6 +103,7 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     for (const SkippedPolygon& s : result.build.skipped) skipped.append(py::make_tuple(s.polygon, defect_name(s.defect)));
     py::dict seconds;
     seconds["elements"] = result.seconds_elements;
+    seconds["lights"] = result.seconds_lights;
     seconds["form_factors"] = result.seconds_form_factors;
     seconds["solve"] = result.seconds_solve;
     seconds["interpolate"] = result.seconds_interpolate;
@@ -119,6 +123,7 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     out["residual"] = result.solve.residual;
     out["residual_history"] = result.solve.residual_history;
     out["converged"] = result.solve.converged;
+    out["matrix_stored"] = result.matrix_stored;
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;
     out["seconds"] = seconds;
@@ -134,7 +139,8 @@ void bind_bake(py::module_& m) {
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "resolution"_a = 128,
           "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
-          "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false,
+          "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
+          "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes,
           "progress"_a = py::none());
 }
 

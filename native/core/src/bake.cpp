@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace radiosity {
 namespace {
@@ -26,8 +27,15 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
 
     auto start = Clock::now();
     result.build = build_elements(input, settings.element_size);
-    const Elements& elements = result.build.elements;
+    Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
+
+    start = Clock::now();
+    if (!settings.lights.empty()) {
+        const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, progress);
+        for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
+    }
+    result.seconds_lights = seconds_since(start);
 
     // Stored, F is computed in parallel and read cheaply by every sweep or shot; progressive
     // refinement also holds F^T to shoot exact columns. Beyond the budget, rows are rendered on

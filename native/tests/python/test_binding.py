@@ -61,7 +61,7 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_corner_radiance"].shape, (elements, 4, 3))
         self.assertEqual(result["element_polygon"].shape, (elements,))
         self.assertAlmostEqual(float(result["element_area"].sum()), 6.0, places=5)
-        self.assertEqual(set(result["seconds"]), {"elements", "form_factors", "solve", "interpolate"})
+        self.assertEqual(set(result["seconds"]), {"elements", "lights", "form_factors", "solve", "interpolate"})
 
     def test_float64_and_list_input_is_accepted(self):
         v, offsets, corners, reflectance, emission = box_arrays()
@@ -98,6 +98,36 @@ class BadInputTest(unittest.TestCase):
     def test_unknown_method(self):
         with self.assertRaisesRegex(ValueError, "method"):
             _core.bake(*box_arrays(), method="magic")
+
+
+class LightsTest(unittest.TestCase):
+    def floor(self, rho=0.5):
+        v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
+        return (v, np.array([0, 4], dtype=np.int32), np.arange(4, dtype=np.int32),
+                np.full((1, 3), rho, dtype=np.float32), np.zeros((1, 3), dtype=np.float32))
+
+    def test_sun_on_a_floor_gives_rho_e_cos_over_pi(self):
+        theta, irradiance, rho = 0.5, 3.0, 0.5
+        sun = {"type": "SUN", "direction": (math.sin(theta), 0.0, -math.cos(theta)), "irradiance": (irradiance,) * 3}
+        result = _core.bake(*self.floor(rho), element_size=0.25, resolution=16, lights=[sun])
+        expected = rho * irradiance * math.cos(theta) / math.pi
+        np.testing.assert_allclose(result["element_radiance"], expected, rtol=1e-5)
+
+    def test_point_lamp_power_is_conserved_on_the_floor(self):
+        intensity, h, rho = 2.0, 1.0, 0.5
+        lamp = {"type": "POINT", "position": (0.0, 0.0, h), "intensity": (intensity,) * 3}
+        result = _core.bake(*self.floor(rho), element_size=0.1, resolution=16, lights=[lamp])
+        # Solid angle of the 2 x 2 floor from 1 m above its centre: 4 atan(1 / (1 * sqrt(3))).
+        solid_angle = 4.0 * math.atan(1.0 / math.sqrt(3.0))
+        power = float((result["element_radiance"][:, 0] * result["element_area"]).sum()) * math.pi / rho
+        self.assertAlmostEqual(power, intensity * solid_angle, delta=1e-3 * power)
+
+    def test_bad_lamp_is_named(self):
+        with self.assertRaisesRegex(ValueError, "light 0: type"):
+            _core.bake(*self.floor(), lights=[{"type": "LASER"}])
+        with self.assertRaisesRegex(ValueError, "light 1: 'direction' has zero length"):
+            _core.bake(*self.floor(), lights=[{"type": "POINT", "position": (0, 0, 1), "intensity": (1, 1, 1)},
+                                              {"type": "SUN", "direction": (0, 0, 0), "irradiance": (1, 1, 1)}])
 
 
 class ProgressTest(unittest.TestCase):

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "radiosity/interpolation.h"
+#include "radiosity/lights.h"
 #include "radiosity/solver.h"
 
 namespace radiosity {
@@ -23,6 +24,9 @@ struct BakeSettings {
     float hard_edge_angle = 0.5236f; ///< radians (30 degrees)
     /// Memory allowed for the stored matrix, judged by matrix_bytes_bound (2 GiB by default).
     std::size_t matrix_budget_bytes = std::size_t(2) << 30;
+    /// Point, spot and sun lamps, shot once before the solve: each element's reflected direct
+    /// light rho E / pi joins its emitted radiance.
+    Lights lights;
 };
 
 struct BakeResult {
@@ -32,7 +36,7 @@ struct BakeResult {
     bool matrix_stored = false;        ///< F stored (exact system) or rows rendered on demand
     std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
     std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
-    double seconds_elements = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
+    double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at
