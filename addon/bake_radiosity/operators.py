@@ -87,8 +87,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
         self._timer = wm.event_timer_add(0.2, window=context.window)
         wm.modal_handler_add(self)
         _running = self
-        self._set_status(context, "Bake Radiosity: exporting done, starting (%d faces) - Esc to cancel"
-                         % job.exported.polygon_count)
+        self._set_status(context, "Bake Radiosity: preparing %d faces - Esc to cancel" % job.exported.polygon_count)
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
@@ -97,7 +96,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
             worker.cancel_requested = True
             self._set_status(context, "Bake Radiosity: cancelling...")
             return {"RUNNING_MODAL"}
-        if event.type != "TIMER" or event.timer is not self._timer:
+        if event.type != "TIMER":
             return {"PASS_THROUGH"}
         if worker.done:
             return self._finish(context)
