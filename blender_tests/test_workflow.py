@@ -21,7 +21,7 @@ pipeline = sys.modules[harness.MODULE + ".pipeline"]
 operators = sys.modules[harness.MODULE + ".operators"]
 native = sys.modules[harness.MODULE + ".native"]
 
-QUICK = dict(element_size=0.25, hemicube_resolution=64)
+QUICK = dict(element_size=0.125, hemicube_resolution=64)  # 4 x 4 walls: 2 x 2 elements a face
 
 
 def quick_box():
