@@ -30,8 +30,8 @@ if mode == "baked":
 elif mode == "cycles":
     scene.render.engine = "CYCLES"
     cycles = scene.cycles
-    cycles.samples = 256
-    cycles.use_denoising = True
+    cycles.samples = 1024
+    cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
     cycles.max_bounces = cycles.diffuse_bounces = 64
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
 else:
