@@ -3,7 +3,7 @@
     xvfb-run -a -s "-screen 0 1600x1000x24" blender --factory-startup scene.blend \\
         --python tools/screenshot_ui.py -- <out-folder>
 
-Writes panel.png (Properties > Render > Radiosity), baking.png (an interactive progressive
+Writes baking.png (an interactive progressive
 bake under way: status bar and the brightening viewport), baked.png (the finished bake in
 the preview shading), then quits. Needs the add-on enabled in the profile it runs with."""
 
@@ -35,18 +35,13 @@ def shoot(name, kind=None):
     print("wrote", name, flush=True)
 
 
-def show_panel():
+def set_up_views():
     window, view = window_and_area("VIEW_3D")
     view.spaces.active.region_3d.view_perspective = "CAMERA"
     view.spaces.active.show_region_ui = True
     properties = next(a for a in window.screen.areas if a.type == "PROPERTIES")
     properties.spaces.active.context = "RENDER"
     bpy.context.scene.render.engine = "BLENDER_WORKBENCH"
-    # The Radiosity panel comes after Workbench's own: scroll the editor down to it.
-    region = next(r for r in properties.regions if r.type == "WINDOW")
-    with bpy.context.temp_override(window=window, area=properties, region=region):
-        bpy.ops.view2d.scroll_down(page=True)
-        bpy.ops.view2d.scroll_down(page=True)
     settings = bpy.context.scene.radiosity
     settings.method, settings.element_size, settings.hemicube_resolution = "PROGRESSIVE", 0.04, 128
 
@@ -65,7 +60,7 @@ def preview():
 
 
 script = [
-    (1.0, show_panel), (1.0, lambda: shoot("panel.png", "PROPERTIES")),
+    (1.0, set_up_views),
     (0.5, start_bake), (2.5, lambda: shoot("baking.png")),
 ]
 
