@@ -89,9 +89,10 @@ class BakeJob:
         return self.result
 
     def element_layout(self):
-        """(element_vertices, element_corners) in the order progress reports radiance, from a
-        one-shot progressive run: same elements as the full run, one hemi-cube of work."""
-        layout = self._run_core("progressive", 1, None)
+        """(element_vertices, element_corners) in the order progress reports radiance."""
+        e = self.exported
+        layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
+                                        e.emission, e.material, element_size=float(self.settings["element_size"]))
         return layout["element_vertices"], layout["element_corners"]
 
     def _run_core(self, method, max_iterations, progress):

@@ -63,6 +63,15 @@ class OutputShapesTest(unittest.TestCase):
         self.assertAlmostEqual(float(result["element_area"].sum()), 6.0, places=5)
         self.assertEqual(set(result["seconds"]), {"elements", "lights", "form_factors", "solve", "interpolate"})
 
+    def test_elements_match_the_bake_without_solving(self):
+        arrays = box_arrays()
+        layout = _core.elements(*arrays, element_size=0.3)
+        result = _core.bake(*arrays, element_size=0.3, resolution=16)
+        for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
+            np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
+        self.assertEqual(layout["elements"], 6 * 16)
+        self.assertEqual(layout["skipped"], [])
+
     def test_float64_and_list_input_is_accepted(self):
         v, offsets, corners, reflectance, emission = box_arrays()
         result = _core.bake(v.astype(np.float64), offsets.tolist(), corners.astype(np.int64),
