@@ -85,6 +85,10 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;
     out["seconds"] = seconds;
+    // What the solve used per element, so the add-on can account for power: emission includes
+    // the lamps' first reflection (rho E / pi), reflectance is the capped input.
+    out["element_emission"] = to_numpy(result.build.elements.emission);
+    out["element_reflectance"] = to_numpy(result.build.elements.reflectance);
     return out;
 }
 
@@ -120,6 +124,11 @@ void bind_bake(py::module_& m) {
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f);
+    // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
+    m.def("matrix_bytes_bound", &matrix_bytes_bound,
+          "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",
+          "element_count"_a, "resolution"_a);
+    m.attr("DEFAULT_MATRIX_BUDGET_BYTES") = BakeSettings().matrix_budget_bytes;
 }
 
 }  // namespace radiosity::python
