@@ -250,6 +250,13 @@ void Hemicube::render_hemisphere(const Elements& elements, const Vec3& origin, c
     impl_->render(elements, origin, basis_around(glm::normalize(normal)), true, exclude);
 }
 
+void Hemicube::render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude,
+                                 float angle) {
+    const std::array<Vec3, 3> frame = basis_around(glm::normalize(normal));
+    const float c = std::cos(angle), s = std::sin(angle);
+    impl_->render(elements, origin, {c * frame[0] + s * frame[1], c * frame[1] - s * frame[0], frame[2]}, true, exclude);
+}
+
 void Hemicube::render_sphere(const Elements& elements, const Vec3& origin, int32_t exclude) {
     impl_->render(elements, origin, {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}, false, exclude);
 }
@@ -305,6 +312,20 @@ Vec3 Hemicube::cell_direction(std::size_t cell) const {
     const float h = m.layout.cell_size();
     const Vec3 local = cube::to_local(cube::faces[f], Vec3(-1.0f + (col + 0.5f) * h, m.layout.y_min(f) + (row + 0.5f) * h, 1.0f));
     return glm::normalize(m.basis[0] * local.x + m.basis[1] * local.y + m.basis[2] * local.z);
+}
+
+float Hemicube::cell_distance(std::size_t cell) const {
+    const Impl& m = *impl_;
+    const float z = m.inverse_depth[cell];
+    if (!(z > 0.0f)) return INFINITY;
+    int f = m.layout.face_count - 1;
+    while (f > 0 && cell < m.layout.offset(f)) --f;
+    const std::size_t within = cell - m.layout.offset(f);
+    const int row = static_cast<int>(within / m.layout.resolution), col = static_cast<int>(within % m.layout.resolution);
+    const float h = m.layout.cell_size();
+    const float x = -1.0f + (col + 0.5f) * h, y = m.layout.y_min(f) + (row + 0.5f) * h;
+    // The z-buffer holds 1/t for the point t (x, y, 1) in face coordinates.
+    return std::sqrt(x * x + y * y + 1.0f) / z;
 }
 
 const CubeWeights& Hemicube::weights() const { return *impl_->weights; }

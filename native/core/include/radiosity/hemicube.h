@@ -36,6 +36,9 @@ public:
     /// Element `exclude` (or -1) is not drawn. Polygons behind the plane are culled; elements
     /// seen from their back side occlude but are credited to nobody.
     void render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude);
+    /// As above, with the hemi-cube turned by `angle` radians about the normal (for averaging
+    /// several orientations against aliasing).
+    void render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude, float angle);
 
     /// Renders `elements` seen from `origin` in all directions (six full faces).
     void render_sphere(const Elements& elements, const Vec3& origin, int32_t exclude);
@@ -48,6 +51,9 @@ public:
     const std::vector<int32_t>& item_buffer() const;
     /// Unit direction through the centre of cell `cell` of the last render, world space.
     Vec3 cell_direction(std::size_t cell) const;
+    /// Distance from the origin of the last render to the nearest drawn polygon along
+    /// cell_direction(cell), from the z-buffer (occluders included); infinity where nothing was drawn.
+    float cell_distance(std::size_t cell) const;
 
     const CubeWeights& weights() const;
 
