@@ -3,6 +3,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "progress.h"
+#include "progress_monitor.h"
 #include "scene_arrays.h"
 
 #include "radiosity/bake.h"
@@ -54,11 +55,14 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.lights = parse_lights(lights);
     settings.matrix_budget_bytes = matrix_budget_bytes;
 
-    ProgressBridge bridge(progress);
+    // A ProgressMonitor reports without the GIL; anything else is called as a Python callback.
+    auto* monitor = py::isinstance<ProgressMonitor>(progress) ? progress.cast<ProgressMonitor*>() : nullptr;
+    ProgressBridge bridge(monitor ? py::none() : progress);
+    const ProgressFn report = monitor ? monitor->function() : bridge.function();
     BakeResult result;
     try {
         py::gil_scoped_release release;
-        result = bake(input, settings, bridge.function());
+        result = bake(input, settings, report);
     } catch (const Cancelled&) {
         bridge.rethrow_if_failed();
         throw;

@@ -4,6 +4,7 @@ Run by ctest with the interpreter the module was built for and PYTHONPATH at the
 The numbers are checked against closed forms, not against the core's own output.
 """
 import math
+import threading
 import unittest
 
 import numpy as np
@@ -171,6 +172,48 @@ class ProgressTest(unittest.TestCase):
 
         with self.assertRaisesRegex(KeyError, "from the callback"):
             _core.bake(*box_arrays(), element_size=0.25, resolution=16, progress=fail)
+
+
+class ProgressMonitorTest(unittest.TestCase):
+    """A bake in a worker thread, polled from the main thread as Blender's modal timer does."""
+
+    def bake_in_thread(self, monitor, **settings):
+        outcome = {}
+
+        def run():
+            try:
+                outcome["result"] = _core.bake(*box_arrays(), progress=monitor, **settings)
+            except _core.Cancelled:
+                outcome["cancelled"] = True
+
+        thread = threading.Thread(target=run)
+        thread.start()
+        return thread, outcome
+
+    def test_snapshot_reports_and_finishes(self):
+        monitor = _core.ProgressMonitor()
+        self.assertIsNone(monitor.snapshot())
+        thread, outcome = self.bake_in_thread(monitor, element_size=0.25, resolution=16, method="progressive",
+                                              tolerance=1e-6)
+        thread.join(60)
+        self.assertFalse(thread.is_alive())
+        np.testing.assert_allclose(outcome["result"]["element_radiance"], 2.0, rtol=1e-5)
+        last = monitor.snapshot()
+        self.assertEqual(last["phase"], "solve")
+        self.assertEqual(last["radiance"].shape, (outcome["result"]["elements"], 3))
+
+    def test_cancel_from_another_thread_while_it_holds_the_gil(self):
+        monitor = _core.ProgressMonitor()
+        thread, outcome = self.bake_in_thread(monitor, element_size=0.05, resolution=32, tolerance=1e-12,
+                                              max_iterations=100000)
+        # Busy Python code on this thread, as Blender's main thread: the core must not wait for us.
+        while monitor.snapshot() is None or monitor.snapshot()["phase"] != "solve":
+            sum(range(1000))
+        monitor.cancel()
+        thread.join(60)
+        self.assertFalse(thread.is_alive())
+        self.assertTrue(outcome.get("cancelled"))
+        self.assertTrue(monitor.cancelled)
 
 
 if __name__ == "__main__":
