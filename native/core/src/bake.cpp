@@ -26,7 +26,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     BakeResult result;
 
     auto start = Clock::now();
-    result.build = build_elements(input, settings.element_size);
+    result.build = build_elements(input, settings.element_size, settings.limits);
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
@@ -44,16 +44,20 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     const std::size_t copies = progressive ? 2 : 1;
     result.matrix_stored = matrix_bytes_bound(elements.size(), settings.resolution) <=
                            settings.matrix_budget_bytes / copies;
+    RowSettings rows;
+    rows.resolution = settings.resolution;
+    rows.rotations = settings.hemicube_rotations;
+    rows.near_field = settings.near_field;
     start = Clock::now();
     if (result.matrix_stored) {
-        const SparseMatrix F = compute_form_factors(elements, settings.resolution, progress);
+        const SparseMatrix F = compute_form_factors(elements, rows, progress);
         result.matrix_nonzeros = F.nonzeros();
         result.matrix_bytes = copies * F.bytes();
         result.seconds_form_factors = seconds_since(start);
         result.solve = solve(elements, F, settings.solve, progress);
     } else {
-        HemicubeRows rows(elements, settings.resolution);
-        result.solve = solve(elements, rows, settings.solve, progress);  // includes rendering rows
+        HemicubeRows on_demand(elements, rows);
+        result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
     }
     result.seconds_solve = result.solve.seconds;
 

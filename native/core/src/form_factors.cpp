@@ -14,9 +14,15 @@
 namespace radiosity {
 
 SparseMatrix compute_form_factors(const Elements& elements, int resolution, const ProgressFn& progress) {
+    RowSettings settings;
+    settings.resolution = resolution;
+    return compute_form_factors(elements, settings, progress);
+}
+
+SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& settings, const ProgressFn& progress) {
     const std::size_t n = elements.size();
-    const auto weights = CubeWeights::make(resolution);
-    tbb::enumerable_thread_specific<Hemicube> hemicubes([&] { return Hemicube(weights); });
+    const auto weights = CubeWeights::make(settings.resolution);
+    tbb::enumerable_thread_specific<RowRenderer> renderers([&] { return RowRenderer(weights, settings); });
     std::vector<SparseRow> rows(n);
 
     std::atomic<std::size_t> done{0};
@@ -36,15 +42,13 @@ SparseMatrix compute_form_factors(const Elements& elements, int resolution, cons
 
     tbb::task_group_context context;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& range) {
-        Hemicube& hemicube = hemicubes.local();
+        RowRenderer& renderer = renderers.local();
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             if (cancelled) {
                 context.cancel_group_execution();
                 return;
             }
-            const auto e = static_cast<int32_t>(i);
-            hemicube.render_hemisphere(elements, elements.centre[i], elements.normal[i], e);
-            hemicube.accumulate(weights->form_factor, rows[i]);
+            renderer.row(elements, static_cast<int32_t>(i), rows[i]);
             const std::size_t finished = ++done;
             if (finished % step == 0 && finished != n) tell(finished);
         }
@@ -75,12 +79,18 @@ void StoredRows::row(int32_t i, SparseRow& out) {
 }
 
 HemicubeRows::HemicubeRows(const Elements& elements, int resolution)
-    : elements_(elements), hemicube_(CubeWeights::make(resolution)) {}
+    : HemicubeRows(elements, [&] {
+          RowSettings settings;
+          settings.resolution = resolution;
+          return settings;
+      }()) {}
+
+HemicubeRows::HemicubeRows(const Elements& elements, const RowSettings& settings)
+    : elements_(elements), renderer_(CubeWeights::make(settings.resolution), settings) {}
 
 void HemicubeRows::row(int32_t i, SparseRow& out) {
     if (i < 0 || static_cast<std::size_t>(i) >= elements_.size()) throw InputError("row " + std::to_string(i) + " out of range");
-    hemicube_.render_hemisphere(elements_, elements_.centre[i], elements_.normal[i], i);
-    hemicube_.accumulate(hemicube_.weights().form_factor, out);
+    renderer_.row(elements_, i, out);
 }
 
 }  // namespace radiosity

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <utility>
@@ -41,10 +42,20 @@ void validate_arrays(const SceneInput& in) {
 }
 
 /// Number of segments an edge of this length is cut into so that each is at most max_edge.
-int segments(double length, float max_edge) {
-    if (max_edge <= 0.0f) return 1;
+/// A double, so that absurd ratios (1e6 m at 1e-6 m) are counted, not overflowed, before the cap.
+double segments(double length, float max_edge) {
+    if (max_edge <= 0.0f) return 1.0;
     // The small slack keeps an edge of exactly k * max_edge at k segments despite rounding.
-    return std::max(1, static_cast<int>(std::ceil(length / max_edge * (1.0 - 1e-6))));
+    return std::max(1.0, std::ceil(length / max_edge * (1.0 - 1e-6)));
+}
+
+/// Counts (long, short) of a quad's two directions after the aspect split: the long direction is
+/// cut until its elements are at most max_aspect times as long as the short direction's.
+void limit_aspect(double length_u, double length_v, float max_aspect, double& nu, double& nv) {
+    if (!(max_aspect >= 1.0f) || !(length_u > 0.0) || !(length_v > 0.0)) return;
+    const double du = length_u / nu, dv = length_v / nv;
+    if (du > max_aspect * dv) nu = std::ceil(length_u / (max_aspect * dv) * (1.0 - 1e-6));
+    if (dv > max_aspect * du) nv = std::ceil(length_v / (max_aspect * du) * (1.0 - 1e-6));
 }
 
 /// Twice the area vector of a polygon (Newell's method): its direction is the normal.
@@ -213,7 +224,7 @@ bool is_convex(const std::vector<DVec3>& p, const DVec3& normal) {
 
 }  // namespace
 
-BuildResult build_elements(const SceneInput& in, float max_edge) {
+BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits) {
     if (!(max_edge >= 0.0f) || !std::isfinite(max_edge)) throw InputError("max_edge must be finite and >= 0");
     validate_arrays(in);
     BuildResult result;
@@ -248,28 +259,43 @@ BuildResult build_elements(const SceneInput& in, float max_edge) {
 
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
-        PolygonBuilder build(out, p, polygon, rho, emitted);
         auto length = [&](int i, int j) { return glm::length(p[j] - p[i]); };
+        // Counts first, checked against the cap in double, before any element is made.
+        auto check_cap = [&](double elements) {
+            if (double(out.size()) + elements > double(limits.max_elements)) {
+                char what[200];
+                std::snprintf(what, sizeof what,
+                              "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
+                              "for the scene; raise element_size",
+                              double(max_edge), elements, limits.max_elements);
+                fail(f, what);
+            }
+        };
+        PolygonBuilder build(out, p, polygon, rho, emitted);
         if (count == 3) {
             // Regular subdivision needs one count for all three edges, so a short edge may be cut
             // finer than its own length asks for (a T-vertex against a neighbour on that edge).
-            const int n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
-                                    segments(length(2, 0), max_edge)});
-            build.triangle(0, 1, 2, n);
+            const double n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
+                                       segments(length(2, 0), max_edge)});
+            check_cap(n * n);
+            build.triangle(0, 1, 2, static_cast<int>(n));
         } else if (count == 4 && is_convex(p, normal)) {
             // Opposite edges share a count; they agree with their neighbours when they are equally long.
-            const int nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
-            const int nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
-            build.quad(0, 1, 2, 3, nu, nv);
+            double nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
+            double nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
+            limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu, nv);
+            check_cap(nu * nv);
+            build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
         } else {
             // Concave quads and n-gons: ear clipping, then one count for all triangles so that they
             // share the vertices on their common diagonals.
             const auto triangles = triangulate(p, normal);
-            int n = 1;
+            double n = 1.0;
             for (const auto& t : triangles)
                 n = std::max({n, segments(length(t[0], t[1]), max_edge), segments(length(t[1], t[2]), max_edge),
                               segments(length(t[2], t[0]), max_edge)});
-            for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], n);
+            check_cap(double(triangles.size()) * n * n);
+            for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
         }
         for (int32_t k = 0; k < count; ++k) out.corner_vertex[first + k] = build.corner(k);
     }

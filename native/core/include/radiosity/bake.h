@@ -22,6 +22,13 @@ struct BakeSettings {
     int resolution = 128;            ///< hemi-cube cells per full face edge
     SolveSettings solve;
     float hard_edge_angle = 0.5236f; ///< radians (30 degrees)
+    /// Element cap and sliver split (docs/stability.md).
+    ElementLimits limits;
+    /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
+    /// elements; see RowSettings::rotations). 1 = the seed's single hemi-cube.
+    int hemicube_rotations = 1;
+    /// Analytic factors for near pairs (shared edges, receivers closer than their size); off by default.
+    NearFieldSettings near_field;
     /// Memory allowed for the stored matrix, judged by matrix_bytes_bound (2 GiB by default).
     std::size_t matrix_budget_bytes = std::size_t(2) << 30;
     /// Point, spot and sun lamps, shot once before the solve: each element's reflected direct

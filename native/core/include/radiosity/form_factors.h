@@ -2,7 +2,7 @@
 /// @brief Form-factor rows for every element: stored as a sparse matrix or computed on demand.
 #pragma once
 
-#include "radiosity/hemicube.h"
+#include "radiosity/row_renderer.h"
 
 namespace radiosity {
 
@@ -16,6 +16,8 @@ public:
 /// F for all elements, one hemi-cube per element at its centre, parallel over elements (TBB).
 /// Reports progress as phase "form_factors" (done = hemi-cubes finished); throws Cancelled.
 SparseMatrix compute_form_factors(const Elements& elements, int resolution, const ProgressFn& progress = {});
+/// As above, with rows computed as `settings` asks (orientation averaging, near-field correction).
+SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& settings, const ProgressFn& progress = {});
 
 /// Rows read from a stored matrix.
 class StoredRows final : public RowSource {
@@ -30,10 +32,11 @@ private:
 class HemicubeRows final : public RowSource {
 public:
     HemicubeRows(const Elements& elements, int resolution);
+    HemicubeRows(const Elements& elements, const RowSettings& settings);
     void row(int32_t i, SparseRow& out) override;
 private:
     const Elements& elements_;
-    Hemicube hemicube_;
+    RowRenderer renderer_;
 };
 
 }  // namespace radiosity

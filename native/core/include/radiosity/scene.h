@@ -57,10 +57,22 @@ struct BuildResult {
     std::vector<SkippedPolygon> skipped;  ///< never used silently: callers report these
 };
 
+/// Guards of the subdivision against input it cannot serve.
+struct ElementLimits {
+    /// More elements than this is an InputError naming the polygon that crosses the cap, raised
+    /// before any element is made (a 1e6 m floor at 1 cm would be 1e16 elements). 2^21 elements
+    /// take about 250 MB here, and a bake of that many takes hours; real scenes need far fewer.
+    std::size_t max_elements = std::size_t(1) << 21;
+    /// Convex quads: cut the long direction further until no element is longer than
+    /// `max_aspect` times its width (thin slivers; docs/stability.md). 0 = off. Triangles keep
+    /// their shape under regular subdivision, so this does not reach them.
+    float max_aspect = 0.0f;
+};
+
 /// Splits every polygon into elements whose edges are at most `max_edge` metres long
 /// (0 = one element per polygon; n-gons are always split into triangles and quads).
 /// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
-/// reflectance outside [0, 1), negative or non-finite emission), naming the polygon.
-BuildResult build_elements(const SceneInput& input, float max_edge);
+/// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.
+BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {});
 
 }  // namespace radiosity
