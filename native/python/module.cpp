@@ -12,4 +12,5 @@ PYBIND11_MODULE(_core, m) {
     py::register_exception<radiosity::Cancelled>(m, "Cancelled");
     radiosity::python::bind_bake(m);
     radiosity::python::bind_progress_monitor(m);
+    radiosity::python::bind_vdb(m);
 }
