@@ -3,6 +3,7 @@
 /// escape to the walls against the exact mean escape probability of a cube, split into 1, 8 and 64
 /// zones, where the seed's point formula (32) is far off.
 #include "radiosity/zonal.h"
+#include "radiosity/zonal_solver.h"
 #include "test_util.h"
 
 #include <glm/geometric.hpp>
@@ -99,6 +100,47 @@ TEST(ZonalFactors, ClosedEnclosureRowsSumToOne) {
         for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k) sum += R.value(k);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], 1.0, 2e-5) << "row " << x << " channel " << c;
     }
+}
+
+TEST(ZonalFactors, EnforcedReciprocityKeepsRowSums) {
+    const test::SceneArrays box = test::closed_box(Vec3(1.0f, 1.5f, 1.0f), Rgb(0.5), Rgb(0.0));
+    const Elements elements = build_elements(box.input(), 0.25f).elements;
+    Medium m(Vec3(0.0f, 0.5f, 0.0f), 0.25f, {4, 2, 4});  // fills part of the box
+    for (std::size_t v = 0; v < m.voxel_count(); ++v) m.extinction[v] = Rgb(0.5 + 0.2 * v, 3.0, 0.0);
+    const std::vector<Medium> media{m};
+    const Zones zones = build_zones(media);
+    ZonalFactorSettings settings;
+    settings.surface_resolution = 32;
+    settings.zone_resolution = 16;
+    ZonalMatrix R = compute_exchange_factors(elements, media, zones, settings);
+    const std::vector<Rgb> w = zonal_weights(elements, zones);
+    auto row_sums = [&] {
+        std::vector<Rgb> sums(R.rows(), Rgb(0.0));
+        for (std::size_t x = 0; x < R.rows(); ++x)
+            for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k) sums[x] += R.value(k);
+        return sums;
+    };
+    auto worst_reciprocity = [&] {
+        const ZonalMatrix T = transpose(R);
+        double worst = 0.0;
+        for (std::size_t x = 0; x < R.rows(); ++x)
+            for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k) {
+                const std::size_t y = R.col[k];
+                double back = 0.0;
+                for (int64_t t = T.row_start[x]; t < T.row_start[x + 1]; ++t)
+                    if (std::size_t(T.col[t]) == y) back = T.value(t).r;  // R_yx
+                const double there = w[x].r * R.value(k).r, here = w[y].r * back;
+                worst = std::max(worst, std::abs(there - here) / std::max(there, here));
+            }
+        return worst;
+    };
+    const std::vector<Rgb> before = row_sums();
+    EXPECT_GT(worst_reciprocity(), 0.01);  // measured rows are not reciprocal
+    enforce_reciprocity(R, w);
+    EXPECT_LT(worst_reciprocity(), 1e-5);
+    const std::vector<Rgb> after = row_sums();
+    for (std::size_t x = 0; x < R.rows(); ++x)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[x][c], before[x][c], 1e-6) << "row " << x << " channel " << c;
 }
 
 TEST(ZonalFactors, EmptySpaceIsFreeAndGreyMediaStoreOneChannel) {

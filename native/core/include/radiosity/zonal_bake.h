@@ -1,0 +1,40 @@
+/// @file zonal_bake.h
+/// @brief The bake with participating media: elements, zones, exchange factors, the coupled solve,
+/// corner colours and the grids a renderer needs to show the media.
+///
+/// Output grids per medium (its dims, x fastest, zero outside zones): `density` = K_t and
+/// `emission` = K_t * L_k per channel. A purely absorbing volume with these, as Cycles renders
+/// one (emission * tau ds along the ray), gives the seed's ray integral (13): inside zone k,
+/// int J_k K_t tau ds = J_k (tau_in - tau_out), J_k = L_k. Where K_t differs per channel the
+/// density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1 and absorption
+/// colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per channel otherwise.
+#pragma once
+
+#include "radiosity/bake.h"
+#include "radiosity/zonal.h"
+
+namespace radiosity {
+
+struct MediumGrids {
+    std::vector<Rgb> density;   ///< K_t per voxel, 1/m
+    std::vector<Rgb> emission;  ///< K_t L per voxel: radiance per metre for an absorbing volume
+};
+
+struct ZonalBakeResult {
+    /// As bake() returns it; solve.radiance and colors hold the elements only.
+    BakeResult surfaces;
+    Zones zones;
+    std::vector<Rgb> zone_radiance;  ///< L_k per zone
+    std::vector<MediumGrids> grids;  ///< per medium
+    double seconds_zones = 0.0;
+};
+
+/// bake() with media: the elements' hemi-cubes (settings.resolution) and the zones' full cubes
+/// (zone_resolution) see through the media, made reciprocal (enforce_reciprocity); the rows are stored within settings.matrix_budget_bytes
+/// (half of it for progressive refinement, which also holds R^T), else InputError. Point, spot and
+/// sun lamps are not shot through media yet, so settings.lights must be empty when there are zones
+/// (InputError); emitting polygons light media. Progress phases "form_factors", "solve"; throws Cancelled.
+ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
+                                int zone_resolution = 32, const ProgressFn& progress = {});
+
+}  // namespace radiosity

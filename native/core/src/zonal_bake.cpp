@@ -1,0 +1,72 @@
+/// @file zonal_bake.cpp
+/// @brief bake_with_media(): the surface pipeline with zones in the system.
+#include "radiosity/zonal_bake.h"
+
+#include "radiosity/zonal_solver.h"
+
+#include <chrono>
+
+namespace radiosity {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+}  // namespace
+
+ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
+                                int zone_resolution, const ProgressFn& progress) {
+    ZonalBakeResult result;
+    BakeResult& bake = result.surfaces;
+
+    auto start = Clock::now();
+    result.zones = build_zones(media);
+    result.seconds_zones = seconds_since(start);
+    if (!settings.lights.empty() && result.zones.size() > 0)
+        throw InputError("point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
+
+    start = Clock::now();
+    bake.build = build_elements(input, settings.element_size);
+    const Elements& elements = bake.build.elements;
+    bake.seconds_elements = seconds_since(start);
+
+    start = Clock::now();
+    const bool progressive = settings.solve.method == Method::Progressive;
+    ZonalFactorSettings factor_settings;
+    factor_settings.surface_resolution = settings.resolution;
+    factor_settings.zone_resolution = zone_resolution;
+    factor_settings.budget_bytes = settings.matrix_budget_bytes / (progressive ? 2 : 1);
+    ZonalMatrix R = compute_exchange_factors(elements, media, result.zones, factor_settings, progress);
+    enforce_reciprocity(R, zonal_weights(elements, result.zones));
+    bake.matrix_stored = true;
+    bake.matrix_nonzeros = R.nonzeros();
+    bake.matrix_bytes = (progressive ? 2 : 1) * R.bytes();
+    bake.seconds_form_factors = seconds_since(start);
+
+    SolveResult solved = solve_zonal(elements, result.zones, R, settings.solve, progress);
+    const std::size_t n = elements.size();
+    result.zone_radiance.assign(solved.radiance.begin() + n, solved.radiance.end());
+    solved.radiance.resize(n);
+    bake.solve = std::move(solved);
+    bake.seconds_solve = bake.solve.seconds;
+
+    start = Clock::now();
+    bake.colors = interpolate_corners(elements, bake.solve.radiance, input.material, settings.hard_edge_angle);
+    bake.seconds_interpolate = seconds_since(start);
+
+    result.grids.resize(media.size());
+    for (std::size_t i = 0; i < media.size(); ++i) {
+        result.grids[i].density.assign(media[i].voxel_count(), Rgb(0.0));
+        result.grids[i].emission.assign(media[i].voxel_count(), Rgb(0.0));
+    }
+    for (std::size_t k = 0; k < result.zones.size(); ++k) {
+        MediumGrids& g = result.grids[result.zones.medium[k]];
+        const std::size_t v = result.zones.voxel[k];
+        g.density[v] = result.zones.extinction[k];
+        g.emission[v] = result.zones.extinction[k] * result.zone_radiance[k];
+    }
+    return result;
+}
+
+}  // namespace radiosity

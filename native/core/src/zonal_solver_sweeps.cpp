@@ -1,0 +1,76 @@
+/// @file zonal_solver_sweeps.cpp
+/// @brief Gauss-Seidel (in place) and Jacobi (two buffers) on the rows of the zonal system.
+///
+/// As solver_sweeps.cpp: each sweep measures the exact residual of the iterate it starts from, so
+/// the residual returned belongs to the radiance returned. The diagonal R_xx (a zone's light it
+/// takes up itself; large for optically thick zones) is solved for, not iterated:
+/// L_x = (E_x + a_x (g_x - R_xx L_x)) / (1 - a_x R_xx).
+#include "zonal_solver_detail.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace radiosity::zonal_detail {
+namespace {
+
+Rgb solve_row(const Terms& t, std::size_t x, const Gathered& g, const Rgb& L_x) {
+    return (t.E[x] + t.a[x] * (g.sum - g.self * L_x)) / (1.0 - t.a[x] * g.self);
+}
+
+double row_residual(const Terms& t, std::size_t x, const Gathered& g, const Rgb& L_x) {
+    return t.norm(x, t.E[x] + t.a[x] * g.sum - L_x);
+}
+
+/// One sweep: L becomes the next iterate, L_entry the one it started from; returns the latter's
+/// (unnormalised) residual.
+double sweep(const Terms& t, const ZonalMatrix& R, bool jacobi, std::vector<Rgb>& L, std::vector<Rgb>& L_entry) {
+    if (jacobi) std::swap(L, L_entry);
+    else L_entry = L;
+    double residual = 0.0;
+    for (std::size_t x = 0; x < t.size(); ++x) {
+        const Gathered entry = gather(R, x, L_entry);
+        residual += row_residual(t, x, entry, L_entry[x]);
+        L[x] = jacobi ? solve_row(t, x, entry, L_entry[x]) : solve_row(t, x, gather(R, x, L), L[x]);
+    }
+    return residual;
+}
+
+}  // namespace
+
+SolveResult solve_sweeps(const Terms& t, const ZonalMatrix& R, const SolveSettings& settings,
+                         const ProgressFn& progress, std::size_t element_count) {
+    const bool jacobi = settings.method == Method::Jacobi;
+    const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
+    const double emitted = t.emitted_norm();
+    detail::DivergenceGuard guard(jacobi ? "Jacobi" : "Gauss-Seidel");
+
+    SolveResult result;
+    std::vector<Rgb> L = t.E, L_entry(t.size());
+    for (std::size_t k = 0;; ++k) {  // L holds L^k here
+        if (k == cap) {
+            double residual = 0.0;
+            for (std::size_t x = 0; x < t.size(); ++x) residual += row_residual(t, x, gather(R, x, L), L[x]);
+            result.residual = residual / emitted;
+            guard.check(result.residual);
+            if (k > 0) result.residual_history.push_back(result.residual);
+            result.iterations = static_cast<int>(k);
+            result.converged = result.residual <= settings.tolerance;
+            break;
+        }
+        const double residual = sweep(t, R, jacobi, L, L_entry) / emitted;
+        guard.check(residual);
+        if (k > 0) result.residual_history.push_back(residual);
+        if (residual <= settings.tolerance) {
+            std::swap(L, L_entry);  // return L^k, whose residual this is
+            result.residual = residual;
+            result.iterations = static_cast<int>(k);
+            result.converged = true;
+            break;
+        }
+        report(progress, k + 1, cap, residual, L, element_count);
+    }
+    result.radiance = std::move(L);
+    return result;
+}
+
+}  // namespace radiosity::zonal_detail
