@@ -39,6 +39,28 @@ py::dict read_grid(const std::string& path, const std::string& name, const Array
     return out;
 }
 
+py::dict voxelize_mesh(const Array<float>& positions, const Array<int32_t>& face_offsets,
+                       const Array<int32_t>& corner_vertices, double cell_size, int samples) {
+    require_shape(positions, "positions", -1, 3);
+    require_shape(face_offsets, "face_offsets", -1, 0);
+    require_shape(corner_vertices, "corner_vertices", -1, 0);
+    if (face_offsets.shape(0) < 1 || face_offsets.at(face_offsets.shape(0) - 1) != corner_vertices.shape(0))
+        throw py::value_error("face_offsets[-1] must equal len(corner_vertices)");
+    vdb::WorldGrid grid;
+    {
+        py::gil_scoped_release release;
+        grid = vdb::voxelize_mesh_interior(positions.data(), positions.shape(0), face_offsets.data(),
+                                           corner_vertices.data(), face_offsets.shape(0) - 1, cell_size, samples);
+    }
+    py::array_t<float> values({py::ssize_t(grid.dims[2]), py::ssize_t(grid.dims[1]), py::ssize_t(grid.dims[0])});
+    std::copy(grid.values.begin(), grid.values.end(), values.mutable_data());
+    py::dict out;
+    out["origin"] = py::make_tuple(grid.origin.x, grid.origin.y, grid.origin.z);
+    out["cell_size"] = grid.cell_size;
+    out["values"] = values;
+    return out;
+}
+
 void write_grids(const std::string& path, const std::vector<double>& origin, double cell_size, const py::dict& grids) {
     if (origin.size() != 3) throw py::value_error("origin must be three numbers");
     if (!(cell_size > 0.0)) throw py::value_error("cell_size must be > 0");
@@ -74,6 +96,10 @@ void bind_vdb(py::module_& m) {
           "Grid `name` of an OpenVDB file averaged over world cells of `cell_size` (samples^3 per cell), "
           "after the object's matrix. Returns {origin, cell_size, values (nz, ny, nx[, 3])}.",
           "path"_a, "name"_a, "object_to_world"_a, "cell_size"_a, "samples"_a = 2);
+    m.def("voxelize_mesh", &voxelize_mesh,
+          "Fraction of each world cell inside a closed mesh (world-space arrays as bake() takes them), "
+          "from samples^3 points per cell. Returns {origin, cell_size, values (nz, ny, nx)}.",
+          "positions"_a, "face_offsets"_a, "corner_vertices"_a, "cell_size"_a, "samples"_a = 2);
     m.def("write_vdb", &write_grids,
           "Writes {name: values (nz, ny, nx[, 3])} as sparse OpenVDB grids whose voxel centres are the "
           "world cells' centres, origin + (index + 0.5) * cell_size.",

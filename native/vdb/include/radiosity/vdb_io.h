@@ -36,6 +36,14 @@ std::vector<std::array<std::string, 2>> list_grids(const std::string& path);
 WorldGrid read_world_grid(const std::string& path, const std::string& name, const glm::dmat4& object_to_world,
                           double cell_size, int samples = 2);
 
+/// The inside of a closed polygon mesh (world space; n-gons fanned into triangles) as the fraction
+/// of each world cell inside it, from `samples`^3 points per cell classified by OpenVDB's signed
+/// distance (meshToLevelSet: closed but not necessarily manifold surfaces, normals ignored).
+/// Cells start at the mesh's bounding-box corner.
+WorldGrid voxelize_mesh_interior(const float* positions, std::size_t vertex_count, const int32_t* face_offsets,
+                                 const int32_t* corner_vertices, std::size_t face_count, double cell_size,
+                                 int samples = 2);
+
 /// A grid to write: `values` has grid.channels (1 -> FloatGrid, 3 -> Vec3SGrid) per cell.
 struct NamedGrid {
     std::string name;
