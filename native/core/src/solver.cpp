@@ -2,6 +2,7 @@
 /// @brief solve() dispatch, the relative residual, and the helpers all solvers share.
 #include "solver_detail.h"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <string>
@@ -98,6 +99,12 @@ SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings
         }
         return detail::solve_sweeps(elements, rows, settings, progress, emitted);
     });
+}
+
+double recommended_over_relaxation(const Elements& elements) {
+    double rho_max = 0.0;
+    for (const Rgb& rho : elements.reflectance) rho_max = std::max({rho_max, rho.r, rho.g, rho.b});
+    return std::min(1.9, 2.0 / (1.0 + std::sqrt(1.0 - rho_max * rho_max)));
 }
 
 double relative_residual(const Elements& elements, RowSource& rows, const std::vector<Rgb>& radiance) {

@@ -8,6 +8,7 @@
 #include "solver_detail.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 namespace radiosity::detail {
@@ -27,7 +28,7 @@ double row_residual(const Elements& elements, std::size_t i, const Gathered& g, 
 /// Gauss-Seidel: on return L is the next iterate, L_entry the one it started from.
 /// Returns the residual of L_entry (unnormalised).
 double gauss_seidel_sweep(const Elements& elements, RowSource& rows, std::vector<Rgb>& L,
-                          std::vector<Rgb>& L_entry, SparseRow& row) {
+                          std::vector<Rgb>& L_entry, SparseRow& row, double omega) {
     L_entry = L;
     double residual = 0.0;
     for (std::size_t i = 0; i < elements.size(); ++i) {
@@ -36,7 +37,7 @@ double gauss_seidel_sweep(const Elements& elements, RowSource& rows, std::vector
         // The entry iterate's gather measures its residual; the current (partly updated) one
         // gives the Gauss-Seidel update.
         residual += row_residual(elements, i, gather(row, i32, L_entry), L_entry[i]);
-        L[i] = solve_row(elements, i, gather(row, i32, L), L[i]);
+        L[i] += omega * (solve_row(elements, i, gather(row, i32, L), L[i]) - L[i]);
     }
     return residual;
 }
@@ -61,6 +62,8 @@ double jacobi_sweep(const Elements& elements, RowSource& rows, std::vector<Rgb>&
 SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveSettings& settings,
                          const ProgressFn& progress, double emitted) {
     const bool jacobi = settings.method == Method::Jacobi;
+    const double omega = settings.over_relaxation;
+    if (!(omega > 0.0 && omega < 2.0)) throw InputError("over_relaxation must be in (0, 2), got " + std::to_string(omega));
     const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
     DivergenceGuard guard(jacobi ? "Jacobi" : "Gauss-Seidel");
 
@@ -78,7 +81,7 @@ SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveS
             break;
         }
         const double residual =
-            (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row) : gauss_seidel_sweep(elements, rows, L, L_entry, row)) /
+            (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row) : gauss_seidel_sweep(elements, rows, L, L_entry, row, omega)) /
             emitted;
         guard.check(residual);
         if (k > 0) result.residual_history.push_back(residual);

@@ -16,6 +16,12 @@ struct RowSettings {
     /// cell centres in one orientation are caught in others. Costs `rotations` renders per row.
     int rotations = 1;
     NearFieldSettings near_field;
+    /// Credit a cell that saw nothing but whose four neighbours on its face all saw something to
+    /// the element its neighbours agree on most (the first in row order on a tie). Where three or
+    /// more polygons meet at a vertex, the rounded edge planes can leave a pin-hole exactly where a
+    /// cell centre falls (grid-aligned models: a 1 x 1.5 x 0.8 box at 0.25 m elements, resolution
+    /// 32, loses 0.3% of 42 rows, which puts a furnace at rho 0.99 6% off).
+    bool fill_pinholes = true;
 };
 
 /// Renders rows; one per thread (owns a hemi-cube and scratch space).
@@ -26,6 +32,9 @@ public:
     void row(const Elements& elements, int32_t i, SparseRow& out);
 
 private:
+    /// Adds the weight of pin-hole cells of the last render to `row` (see fill_pinholes).
+    void fill_pinholes(SparseRow& row);
+
     Hemicube hemicube_;
     RowSettings settings_;
     SparseRow turn_;
