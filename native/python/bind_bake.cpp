@@ -1,9 +1,8 @@
 /// @file bind_bake.cpp
 /// @brief `_core.bake` (flat numpy arrays in, corner colours and statistics out) and `_core.elements`.
 #include "arrays.h"
+#include "bake_keywords.h"
 #include "bindings.h"
-#include "progress.h"
-#include "progress_monitor.h"
 #include "scene_arrays.h"
 
 #include "radiosity/bake.h"
@@ -14,23 +13,6 @@ namespace radiosity::python {
 
 namespace {
 
-Method parse_method(const std::string& name) {
-    if (name == "gauss_seidel") return Method::GaussSeidel;
-    if (name == "jacobi") return Method::Jacobi;
-    if (name == "progressive") return Method::Progressive;
-    throw py::value_error("method must be 'gauss_seidel', 'jacobi' or 'progressive', got '" + name + "'");
-}
-
-/// Element corner colours as (E, 4, 3); the 4th corner of a triangle repeats zero.
-py::array_t<float> element_corner_array(const std::vector<Rgb>& element_corner) {
-    const auto count = static_cast<py::ssize_t>(element_corner.size() / 4);
-    py::array_t<float> out({count, py::ssize_t{4}, py::ssize_t{3}});
-    float* o = out.mutable_data();
-    for (std::size_t k = 0; k < element_corner.size(); ++k)
-        for (int c = 0; c < 3; ++c) o[3 * k + c] = static_cast<float>(element_corner[k][c]);
-    return out;
-}
-
 py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
@@ -39,60 +21,19 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      std::size_t matrix_budget_bytes,
                      const py::object& progress) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
-    if (resolution < 8 || resolution % 2 != 0) throw py::value_error("resolution must be an even number >= 8");
-    if (!(element_size >= 0.0f)) throw py::value_error("element_size must be >= 0");
-    if (!(tolerance > 0.0)) throw py::value_error("tolerance must be > 0");
-    if (max_iterations < 1) throw py::value_error("max_iterations must be >= 1");
-
-    BakeSettings settings;
-    settings.element_size = element_size;
-    settings.resolution = resolution;
-    settings.solve.method = parse_method(method);
-    settings.solve.tolerance = tolerance;
-    settings.solve.max_iterations = max_iterations;
-    settings.solve.ambient = ambient;
-    settings.hard_edge_angle = hard_edge_angle;
-    settings.lights = parse_lights(lights);
-    settings.matrix_budget_bytes = matrix_budget_bytes;
-
-    // A ProgressMonitor reports without the GIL; anything else is called as a Python callback.
-    auto* monitor = py::isinstance<ProgressMonitor>(progress) ? progress.cast<ProgressMonitor*>() : nullptr;
-    ProgressBridge bridge(monitor ? py::none() : progress);
-    const ProgressFn report = monitor ? monitor->function() : bridge.function();
+    const BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
+                                                hard_edge_angle, ambient, lights, matrix_budget_bytes);
+    ProgressReporter reporter(progress);
     BakeResult result;
     try {
         py::gil_scoped_release release;
-        result = bake(input, settings, report);
+        result = bake(input, settings, reporter.function());
     } catch (const Cancelled&) {
-        bridge.rethrow_if_failed();
+        reporter.rethrow_if_failed();
         throw;
     }
-
-    py::dict seconds;
-    seconds["elements"] = result.seconds_elements;
-    seconds["lights"] = result.seconds_lights;
-    seconds["form_factors"] = result.seconds_form_factors;
-    seconds["solve"] = result.seconds_solve;
-    seconds["interpolate"] = result.seconds_interpolate;
-
     py::dict out;
-    add_elements(result.build, out);
-    out["corner_radiance"] = to_numpy(result.colors.input_corner);
-    out["element_corner_radiance"] = element_corner_array(result.colors.element_corner);
-    out["element_radiance"] = to_numpy(result.solve.radiance);
-    out["iterations"] = result.solve.iterations;
-    out["shots"] = result.solve.shots;
-    out["residual"] = result.solve.residual;
-    out["residual_history"] = result.solve.residual_history;
-    out["converged"] = result.solve.converged;
-    out["matrix_stored"] = result.matrix_stored;
-    out["matrix_nonzeros"] = result.matrix_nonzeros;
-    out["matrix_bytes"] = result.matrix_bytes;
-    out["seconds"] = seconds;
-    // What the solve used per element, so the add-on can account for power: emission includes
-    // the lamps' first reflection (rho E / pi), reflectance is the capped input.
-    out["element_emission"] = to_numpy(result.build.elements.emission);
-    out["element_reflectance"] = to_numpy(result.build.elements.reflectance);
+    add_bake_result(result, out);
     return out;
 }
 

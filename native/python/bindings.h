@@ -12,6 +12,7 @@ namespace py = pybind11;
 
 void bind_bake(py::module_& m);
 void bind_vdb(py::module_& m);
+void bind_zonal(py::module_& m);
 
 /// Lamps given as a list of dicts ({"type": "POINT" | "SPOT" | "SUN", ...}) to core lights.
 Lights parse_lights(const py::list& lamps);

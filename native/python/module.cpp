@@ -13,4 +13,5 @@ PYBIND11_MODULE(_core, m) {
     radiosity::python::bind_bake(m);
     radiosity::python::bind_progress_monitor(m);
     radiosity::python::bind_vdb(m);
+    radiosity::python::bind_zonal(m);
 }

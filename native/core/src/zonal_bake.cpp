@@ -47,6 +47,10 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     SolveResult solved = solve_zonal(elements, result.zones, R, settings.solve, progress);
     const std::size_t n = elements.size();
     result.zone_radiance.assign(solved.radiance.begin() + n, solved.radiance.end());
+    result.zone_incident.assign(result.zones.size(), Rgb(0.0));
+    for (std::size_t k = 0; k < result.zones.size(); ++k)
+        for (int64_t e = R.row_start[n + k]; e < R.row_start[n + k + 1]; ++e)
+            result.zone_incident[k] += R.value(e) * solved.radiance[R.col[e]];
     solved.radiance.resize(n);
     bake.solve = std::move(solved);
     bake.seconds_solve = bake.solve.seconds;

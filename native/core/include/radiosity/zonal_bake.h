@@ -25,6 +25,9 @@ struct ZonalBakeResult {
     BakeResult surfaces;
     Zones zones;
     std::vector<Rgb> zone_radiance;  ///< L_k per zone
+    /// H_k = sum_y R_ky L_y: the mean radiance a zone receives, so a caller can count the power it
+    /// absorbs, pi (4 K_t V) (1 - Omega) H_k (its radiance alone cannot say when Omega = 0).
+    std::vector<Rgb> zone_incident;
     std::vector<MediumGrids> grids;  ///< per medium
     double seconds_zones = 0.0;
 };

@@ -1,0 +1,104 @@
+"""`_core.bake_with_media` and `_core.principled_volume` over the binding, against closed forms:
+Kirchhoff's isothermal enclosure, a scattering medium inside black emitting walls, and the
+Principled Volume formula as Cycles' svm_node_principled_volume writes it."""
+import unittest
+
+import numpy as np
+
+import _core
+from test_binding import box_arrays
+
+
+def fog(L0_emission, extinction, albedo, size=4, voxel=0.25):
+    """A medium filling the unit box: size^3 voxels of uniform coefficients."""
+    shape = (size, size, size, 3)
+    return {"origin": (0.0, 0.0, 0.0), "voxel_size": voxel,
+            "extinction": np.broadcast_to(np.asarray(extinction, np.float32), shape),
+            "albedo": np.broadcast_to(np.asarray(albedo, np.float32), shape),
+            "emission": np.broadcast_to(np.asarray(L0_emission, np.float32), shape)}
+
+
+def bake(arrays, media, **settings):
+    return _core.bake_with_media(*arrays, element_size=0.5, resolution=32, tolerance=1e-7,
+                                 media=media, zone_resolution=16, **settings)
+
+
+class IsothermalTest(unittest.TestCase):
+    def test_walls_and_zones_all_at_the_common_radiance(self):
+        # Walls emit (1 - rho) L0, the medium K_a L0 = K_t (1 - Omega) L0: Kirchhoff says all is L0.
+        L0, rho, Omega, K = np.array([1.0, 2.0, 0.5]), np.array([0.5, 0.3, 0.7]), np.array([0.3, 0.6, 0.9]), 2.0
+        v, f, c, _, _ = box_arrays()
+        reflectance = np.tile(rho, (6, 1)).astype(np.float32)
+        emission = np.tile((1.0 - rho) * L0, (6, 1)).astype(np.float32)
+        for method in ("gauss_seidel", "progressive"):
+            with self.subTest(method=method):
+                r = bake((v, f, c, reflectance, emission), [fog(K * (1.0 - Omega) * L0, K, Omega)], method=method)
+                self.assertEqual(r["zones"], 64)
+                self.assertTrue(r["converged"])
+                np.testing.assert_allclose(r["element_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
+                np.testing.assert_allclose(r["corner_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
+                np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (64, 1)), rtol=5e-3)
+                grids = r["grids"][0]
+                self.assertEqual(grids["density"].shape, (4, 4, 4, 3))
+                np.testing.assert_allclose(grids["density"], K, rtol=1e-6)
+                np.testing.assert_allclose(grids["emission"], np.broadcast_to(K * L0, (4, 4, 4, 3)), rtol=5e-3)
+
+    def test_scattering_medium_takes_the_black_walls_radiance(self):
+        L0 = np.array([1.0, 0.5, 2.0])
+        v, f, c, _, _ = box_arrays()
+        r = bake((v, f, c, np.zeros((6, 3), np.float32), np.tile(L0, (6, 1)).astype(np.float32)),
+                 [fog(0.0, 3.0, 1.0)])
+        np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (64, 1)), rtol=5e-3)
+
+    def test_power_emitted_is_absorbed_by_walls_and_medium(self):
+        v, f, c, _, _ = box_arrays()
+        rho = np.full((6, 3), 0.5, np.float32)
+        emission = np.zeros((6, 3), np.float32)
+        emission[1] = 4.0  # the ceiling glows
+        r = bake((v, f, c, rho, emission), [fog(0.0, 1.5, (0.5, 0.8, 0.2))])
+        area, L = r["element_area"][:, None], r["element_radiance"]
+        E, R = r["element_emission"], r["element_reflectance"]
+        emitted = np.pi * (area * E).sum(axis=0)
+        walls = np.pi * (area * (1.0 - R) / R * (L - E)).sum(axis=0)  # reflected pi A (L - E) = pi A rho H
+        zones = np.pi * (r["zone_weight"] * (1.0 - r["zone_albedo"]) * r["zone_incident"]).sum(axis=0)
+        np.testing.assert_allclose((walls + zones) / emitted, 1.0, atol=1e-3)
+        self.assertGreater(zones.min(), 0.05 * emitted.min())  # the medium takes a real share
+
+
+class MediaInputTest(unittest.TestCase):
+    def test_bad_media_name_the_medium(self):
+        arrays = box_arrays()
+        good = fog(0.0, 1.0, 0.5)
+        wrong_shape = dict(good, albedo=np.zeros((4, 4, 3, 3), np.float32))
+        with self.assertRaisesRegex(ValueError, r"medium 1: 'albedo' must have shape"):
+            bake(arrays, [good, wrong_shape])
+        missing = {k: val for k, val in good.items() if k != "emission"}
+        with self.assertRaisesRegex(ValueError, "medium 0 has no 'emission'"):
+            bake(arrays, [missing])
+        bright = dict(good, albedo=np.full((4, 4, 4, 3), 1.5, np.float32))
+        with self.assertRaisesRegex(ValueError, "medium 0 voxel 0: albedo outside"):
+            bake(arrays, [bright])
+
+    def test_lamps_are_refused_with_media(self):
+        lamp = {"type": "POINT", "position": (0.5, 0.5, 0.5), "intensity": (1.0, 1.0, 1.0)}
+        with self.assertRaisesRegex(ValueError, "not shot through media"):
+            bake(box_arrays(), [fog(0.0, 1.0, 0.5)], lights=[lamp])
+
+
+class PrincipledVolumeTest(unittest.TestCase):
+    def test_cycles_formula_per_voxel(self):
+        color, absorption, emission_color = (0.8, 0.5, 0.1), (0.25, 0.0, 1.0), (1.0, 0.5, 0.25)
+        density = np.array([[0.0, 1.0], [2.5, -1.0]])
+        strength = np.full_like(density, 3.0)
+        out = _core.principled_volume(color, density, absorption, strength, emission_color)
+        d = np.maximum(density, 0.0)[..., None]
+        # Cycles: sigma_s = d * color, sigma_a = d * (1 - color) * (1 - sqrt(absorption color)).
+        np.testing.assert_allclose(out["scattering"], d * np.array(color), rtol=1e-6)
+        np.testing.assert_allclose(out["absorption"], d * np.array([0.2 * 0.5, 0.5 * 1.0, 0.0]), rtol=1e-6, atol=1e-7)
+        np.testing.assert_allclose(out["emission"], np.broadcast_to([3.0, 1.5, 0.75], (2, 2, 3)), rtol=1e-6)
+        with self.assertRaisesRegex(ValueError, "same shape"):
+            _core.principled_volume(color, density, absorption, np.ones(3), emission_color)
+
+
+if __name__ == "__main__":
+    unittest.main()
