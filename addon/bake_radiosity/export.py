@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import lights, materials
+from . import lights, materials, media_materials
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
 COPY_TAG = "radiosity_bake_copy"
@@ -56,8 +56,8 @@ def export_scene(depsgraph, view_layer):
             continue
         if obj.type == "LIGHT":
             builder.add_light(obj, instance.matrix_world)
-        elif obj.type in GEOMETRY_TYPES and not obj.original.get(COPY_TAG):
-            builder.add_geometry(instance)
+        elif obj.type in GEOMETRY_TYPES and not obj.original.get(COPY_TAG) and not media_materials.is_medium_only(obj):
+            builder.add_geometry(instance)  # a medium-only mesh has no surface in Cycles; media_export reads it
     return builder.finish()
 
 

@@ -70,6 +70,19 @@ class RadiositySettings(bpy.types.PropertyGroup):
         ),
         default="ORIGINAL",
     )
+    zone_size: FloatProperty(
+        name="Zone Size",
+        description="Edge of the cubic zones fog, smoke and fire are split into, in scene units. "
+                    "0 chooses it from the media's size for about 4096 zones; time grows with the "
+                    "square of the zone count",
+        default=0.0, min=0.0, soft_max=2.0, subtype="DISTANCE", unit="LENGTH", precision=3,
+    )
+    media_folder: StringProperty(
+        name="Media Folder",
+        description="Folder for the baked media's OpenVDB files ('//' = beside the .blend; a temporary "
+                    "folder while the file is unsaved)",
+        default="//", subtype="DIR_PATH",
+    )
     last_report: StringProperty(
         name="Last Bake",
         description="Summary of the most recent bake of this scene",

@@ -29,6 +29,9 @@ def draw_panel(layout, context):
     column.separator()
     column.prop(settings, "target")
     column.prop(settings, "attribute_name")
+    column.separator()
+    column.prop(settings, "zone_size")
+    column.prop(settings, "media_folder")
 
 
 class RADIOSITY_PT_render(bpy.types.Panel):

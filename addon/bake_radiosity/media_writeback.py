@@ -1,0 +1,105 @@
+"""The solved media into the file: per medium an OpenVDB file with grids `density` (extinction
+K_t) and `emission` (K_t L), loaded as a Volume object in the "Radiosity Bake" collection with a
+purely absorbing, emitting material, so Cycles renders the seed's ray integral (zonal_bake.h)."""
+
+import os
+import re
+import tempfile
+
+import bpy
+import numpy as np
+
+from . import native
+from .media_export import MEDIUM_TAG
+from .writeback import _copies_collection
+
+MATERIAL_NAME = "Radiosity Medium"
+FILE_SUFFIX = ".radiosity.vdb"
+
+
+def output_folder(folder_setting):
+    """The chosen folder ('//' = beside the .blend); a temporary folder for an unsaved file."""
+    if folder_setting.startswith("//") and not bpy.data.filepath:
+        return os.path.join(tempfile.gettempdir(), "bake_radiosity")
+    return bpy.path.abspath(folder_setting or "//")
+
+
+def write(scene, exported_media, result, folder_setting):
+    """Replaces the previous bake's Volume objects with this one's; returns the files written."""
+    remove_media()
+    folder = output_folder(folder_setting)
+    os.makedirs(folder, exist_ok=True)
+    collection = _copies_collection(scene)
+    material = _medium_material()
+    protected = exported_media.input_files
+    paths = []
+    for medium, grids in zip(exported_media.media, result["grids"]):
+        path = _output_path(folder, medium.object_name, protected)
+        grid = medium.grid
+        native.core().write_vdb(path, grid["origin"], grid["voxel_size"],
+                                {"density": _grey_if_possible(grids["density"]), "emission": grids["emission"]})
+        volume = bpy.data.volumes.new("%s Radiosity" % medium.object_name)
+        volume.filepath = path
+        volume.materials.append(material)
+        obj = bpy.data.objects.new(volume.name, volume)
+        obj[MEDIUM_TAG] = medium.object_name
+        collection.objects.link(obj)
+        paths.append(path)
+    return paths
+
+
+def remove_media():
+    """Deletes the Volume objects (and their data) a bake made, and nothing else. Files stay."""
+    for obj in [o for o in bpy.data.objects if o.get(MEDIUM_TAG)]:
+        volume = obj.data
+        bpy.data.objects.remove(obj)
+        if volume is not None and volume.users == 0:
+            bpy.data.volumes.remove(volume)
+
+
+def _output_path(folder, object_name, protected):
+    """<object>.radiosity.vdb in `folder`, numbered on if that is one of the user's input files."""
+    stem = re.sub(r"[^\w.-]+", "_", object_name)
+    path, number = os.path.join(folder, stem + FILE_SUFFIX), 1
+    while os.path.realpath(path) in protected:
+        path, number = os.path.join(folder, "%s.%d%s" % (stem, number, FILE_SUFFIX)), number + 1
+    return path
+
+
+def _grey_if_possible(density):
+    """A float grid when the channels agree (Cycles' density is a float); RGB otherwise."""
+    if np.array_equal(density[..., 0], density[..., 1]) and np.array_equal(density[..., 0], density[..., 2]):
+        return np.ascontiguousarray(density[..., 0])
+    return density
+
+
+def _medium_material():
+    """Volume Absorption of colour 1 - density (absorbs K_t per channel) + Emission of the
+    `emission` grid at strength 1: radiance per metre K_t L, attenuated as the original medium."""
+    material = bpy.data.materials.get(MATERIAL_NAME)
+    if material is not None:
+        return material
+    material = bpy.data.materials.new(MATERIAL_NAME)
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    density = nodes.new("ShaderNodeAttribute")
+    density.attribute_name = "density"
+    one_minus = nodes.new("ShaderNodeVectorMath")
+    one_minus.operation = "SUBTRACT"
+    one_minus.inputs[0].default_value = (1.0, 1.0, 1.0)
+    absorption = nodes.new("ShaderNodeVolumeAbsorption")
+    absorption.inputs["Density"].default_value = 1.0
+    emitted = nodes.new("ShaderNodeAttribute")
+    emitted.attribute_name = "emission"
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 1.0
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(density.outputs["Vector"], one_minus.inputs[1])
+    links.new(one_minus.outputs["Vector"], absorption.inputs["Color"])
+    links.new(emitted.outputs["Color"], emission.inputs["Color"])
+    links.new(absorption.outputs[0], add.inputs[0])
+    links.new(emission.outputs[0], add.inputs[1])
+    links.new(add.outputs[0], output.inputs["Volume"])
+    return material
