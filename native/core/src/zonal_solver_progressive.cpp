@@ -5,39 +5,13 @@
 /// Shooting u from x adds a_y R_yx u to L_y and U_y, so this solves the system the sweeps solve.
 /// As in solver_progressive.cpp the residual is exactly sum_x w_x U_x . s_x with
 /// s_x = sum_y a_y w_y R_yx / w_x (per channel), known for every x because R^T is held.
+#include "max_tree.h"
 #include "zonal_solver_detail.h"
 
 #include <algorithm>
 
 namespace radiosity::zonal_detail {
 namespace {
-
-/// Tournament tree over n keys: the largest key's index in O(1), an update in O(log n).
-class MaxTree {
-public:
-    explicit MaxTree(const std::vector<double>& keys) : key_(keys) {
-        while (leaves_ < key_.size()) leaves_ *= 2;
-        node_.assign(2 * leaves_, -1);
-        for (std::size_t i = 0; i < key_.size(); ++i) node_[leaves_ + i] = static_cast<int32_t>(i);
-        for (std::size_t p = leaves_ - 1; p >= 1; --p) node_[p] = winner(node_[2 * p], node_[2 * p + 1]);
-    }
-    int32_t top() const { return node_[1]; }
-    double key(int32_t i) const { return key_[i]; }
-    void set(int32_t i, double key) {
-        key_[i] = key;
-        for (std::size_t p = (leaves_ + i) / 2; p >= 1; p /= 2) node_[p] = winner(node_[2 * p], node_[2 * p + 1]);
-    }
-
-private:
-    int32_t winner(int32_t a, int32_t b) const {
-        if (a < 0) return b;
-        if (b < 0) return a;
-        return key_[b] > key_[a] ? b : a;
-    }
-    std::vector<double> key_;
-    std::size_t leaves_ = 1;
-    std::vector<int32_t> node_;
-};
 
 double power(const Terms& t, std::size_t x, const Rgb& U) { return t.norm(x, U); }
 
@@ -70,7 +44,7 @@ SolveResult solve_progressive(const Terms& t, const ZonalMatrix& R, const SolveS
     std::vector<Rgb> L = t.E, U = t.E;
     std::vector<double> keys(n);
     for (std::size_t x = 0; x < n; ++x) keys[x] = power(t, x, U[x]);
-    MaxTree shooter(keys);
+    detail::MaxTree shooter(keys);
     double residual = unshot_residual(U);
     auto record = [&] {  // resynchronise the running sum and log the sweep
         residual = unshot_residual(U);
