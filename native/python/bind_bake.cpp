@@ -19,10 +19,17 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      float element_size, int resolution, const std::string& method, double tolerance,
                      int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                      std::size_t matrix_budget_bytes,
-                     const py::object& progress) {
+                     const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
+                     std::size_t max_elements, int hemicube_rotations) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
-    const BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
-                                                hard_edge_angle, ambient, lights, matrix_budget_bytes);
+    BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
+                                          hard_edge_angle, ambient, lights, matrix_budget_bytes);
+    // The stability settings of docs/stability.md; the core checks their ranges (ValueError).
+    settings.near_field.enabled = near_field;
+    settings.solve.over_relaxation = over_relaxation;
+    settings.limits.max_aspect = max_element_aspect;
+    settings.limits.max_elements = max_elements;
+    settings.hemicube_rotations = hemicube_rotations;
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
@@ -64,7 +71,8 @@ void bind_bake(py::module_& m) {
           "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
           "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
           "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes,
-          "progress"_a = py::none());
+          "progress"_a = py::none(), "near_field"_a = false, "over_relaxation"_a = 1.0,
+          "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1);
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,

@@ -1,0 +1,35 @@
+/// @file charts_main.cpp
+/// @brief radiosity_charts OUTPUT_DIR [form_factors|aliasing|convergence ...]: writes the CSVs of
+/// the native charts (all of them without names). tools/make_charts.sh runs it and plots.
+#include "charts.h"
+
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <map>
+
+int main(int argc, char** argv) {
+    using namespace radiosity::charts;
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s OUTPUT_DIR [form_factors|aliasing|convergence ...]\n", argv[0]);
+        return 2;
+    }
+    const std::string dir = argv[1];
+    const std::map<std::string, std::function<void(const std::string&)>> charts{
+        {"form_factors", form_factors}, {"aliasing", aliasing}, {"convergence", convergence}};
+    std::vector<std::string> names;
+    for (int k = 2; k < argc; ++k) names.emplace_back(argv[k]);
+    if (names.empty())
+        for (const auto& [name, run] : charts) names.push_back(name);
+    for (const std::string& name : names) {
+        const auto found = charts.find(name);
+        if (found == charts.end()) {
+            std::fprintf(stderr, "unknown chart '%s'\n", name.c_str());
+            return 2;
+        }
+        const std::string path = dir + "/" + name + ".csv";
+        std::printf("%s -> %s\n", name.c_str(), path.c_str());
+        found->second(path);
+    }
+    return 0;
+}

@@ -1,0 +1,108 @@
+"""Stability through the binding (docs/stability.md): degenerate input, scales, the element cap,
+and the stability settings of `_core.bake`. Numbers are checked against closed forms.
+"""
+import math
+import time
+import unittest
+
+import numpy as np
+
+import _core
+
+
+def box_arrays(size=1.0, rho=0.5, emitted=1.0):
+    """The six inward-facing sides of a 1 x 1.5 x 0.8 box scaled by `size`, uniform rho and E."""
+    sx, sy, sz = size, 1.5 * size, 0.8 * size
+    v = np.array([[0, 0, 0], [sx, 0, 0], [sx, sy, 0], [0, sy, 0],
+                  [0, 0, sz], [sx, 0, sz], [sx, sy, sz], [0, sy, sz]], dtype=np.float32)
+    quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 3, 7, 4], [1, 5, 6, 2], [0, 4, 5, 1], [3, 2, 6, 7]]
+    return (v, np.arange(0, 25, 4, dtype=np.int32), np.array(quads, dtype=np.int32).ravel(),
+            np.full((6, 3), rho, dtype=np.float32), np.full((6, 3), emitted, dtype=np.float32))
+
+
+def add_triangle(arrays, corners):
+    v, offsets, indices, reflectance, emission = arrays
+    first = len(v)
+    return (np.vstack([v, np.array(corners, dtype=np.float32)]),
+            np.append(offsets, offsets[-1] + 3).astype(np.int32),
+            np.concatenate([indices, [first, first + 1, first + 2]]).astype(np.int32),
+            np.vstack([reflectance, [[0.5, 0.5, 0.5]]]).astype(np.float32),
+            np.vstack([emission, [[0, 0, 0]]]).astype(np.float32))
+
+
+class ScaleTest(unittest.TestCase):
+    def test_furnace_from_micrometres_to_thousands_of_kilometres(self):
+        for size in (1e-6, 1.0, 1e6):
+            with self.subTest(size=size):
+                result = _core.bake(*box_arrays(size), element_size=0.3 * size, resolution=32, tolerance=1e-7)
+                self.assertEqual(result["elements"], 94)
+                np.testing.assert_allclose(result["element_radiance"], 2.0, rtol=1e-4)
+                self.assertTrue(np.isfinite(result["corner_radiance"]).all())
+
+
+class DegenerateInputTest(unittest.TestCase):
+    def test_zero_area_nan_and_inf_polygons_are_skipped(self):
+        arrays = box_arrays()
+        for corners in ([[0.2, 0.2, 0.5], [0.4, 0.2, 0.5], [0.3, 0.2, 0.5]],
+                        [[0.2, 0.2, 0.5], [math.nan, 0.2, 0.5], [0.2, 0.4, 0.5]],
+                        [[0.2, 0.2, 0.5], [math.inf, 0.2, 0.5], [0.2, 0.4, 0.5]]):
+            arrays = add_triangle(arrays, corners)
+        result = _core.bake(*arrays, element_size=0.3, resolution=32, tolerance=1e-7)
+        self.assertEqual(result["skipped"], [(6, "zero area"), (7, "non-finite coordinates"),
+                                             (8, "non-finite coordinates")])
+        self.assertTrue(np.isfinite(result["corner_radiance"]).all())
+        np.testing.assert_allclose(result["element_radiance"], 2.0, rtol=1e-4)
+
+    def test_nan_emission_names_the_polygon(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        emission[2, 1] = math.nan
+        with self.assertRaisesRegex(ValueError, "polygon 2"):
+            _core.bake(v, offsets, corners, reflectance, emission)
+
+    def test_too_many_elements_is_a_clear_error_and_quick(self):
+        v = np.array([[0, 0, 0], [1e6, 0, 0], [1e6, 1e6, 0], [0, 1e6, 0]], dtype=np.float32)
+        floor = (v, np.array([0, 4], dtype=np.int32), np.arange(4, dtype=np.int32),
+                 np.full((1, 3), 0.5, dtype=np.float32), np.ones((1, 3), dtype=np.float32))
+        start = time.monotonic()
+        with self.assertRaisesRegex(ValueError, r"polygon 0: element_size 0.01 m would make 1e\+16 elements"):
+            _core.bake(*floor, element_size=0.01)
+        self.assertLess(time.monotonic() - start, 1.0)
+        with self.assertRaisesRegex(ValueError, "cap of 100"):
+            _core.bake(*box_arrays(), element_size=0.1, max_elements=100)
+
+
+class StabilitySettingsTest(unittest.TestCase):
+    def test_over_relaxation_converges_to_the_furnace_in_fewer_sweeps(self):
+        rho = 0.99
+        arrays = box_arrays(rho=rho)
+        plain = _core.bake(*arrays, element_size=0.25, resolution=32, tolerance=1e-7, max_iterations=5000)
+        omega = 2.0 / (1.0 + math.sqrt(1.0 - rho * rho))
+        sor = _core.bake(*arrays, element_size=0.25, resolution=32, tolerance=1e-7, max_iterations=5000,
+                         over_relaxation=omega)
+        np.testing.assert_allclose(sor["element_radiance"], 1.0 / (1.0 - rho), rtol=1e-4)
+        self.assertLess(sor["iterations"], plain["iterations"] / 5)
+        with self.assertRaisesRegex(ValueError, "over_relaxation"):
+            _core.bake(*arrays, over_relaxation=2.0)
+
+    def test_near_field_gives_the_area_factor_of_opposed_squares(self):
+        # Receiver (one element) under an emitter 1 m away: L = rho F_area E, F_area = 0.1998249.
+        v = np.array([[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1],
+                      [0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float32)
+        arrays = (v, np.array([0, 4, 8], dtype=np.int32), np.arange(8, dtype=np.int32),
+                  np.array([[0, 0, 0], [0.5, 0.5, 0.5]], dtype=np.float32),
+                  np.array([[1, 1, 1], [0, 0, 0]], dtype=np.float32))
+        before = _core.bake(*arrays, resolution=64)["element_radiance"][1, 0]
+        after = _core.bake(*arrays, resolution=64, near_field=True)["element_radiance"][1, 0]
+        self.assertAlmostEqual(before, 0.5 * 0.239456, delta=1e-5)  # the centre-point value
+        self.assertAlmostEqual(after, 0.5 * 0.1998249, delta=1e-5)
+
+    def test_aspect_split_cuts_slivers(self):
+        v = np.array([[0, 0, 0], [1, 0, 0], [1, 0.01, 0], [0, 0.01, 0]], dtype=np.float32)
+        strip = (v, np.array([0, 4], dtype=np.int32), np.arange(4, dtype=np.int32),
+                 np.full((1, 3), 0.5, dtype=np.float32), np.zeros((1, 3), dtype=np.float32))
+        self.assertEqual(_core.elements(*strip)["elements"], 1)
+        self.assertEqual(_core.bake(*strip, resolution=16, max_element_aspect=4.0)["elements"], 25)
+
+
+if __name__ == "__main__":
+    unittest.main()
