@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Regenerates every chart in docs/charts/ (CSV + PNG) from a build of the current tree:
+#
+#   tools/make_charts.sh            all charts
+#   tools/make_charts.sh bake_vs_cycles   one chart by its step name
+#
+# Each chart is one step function below: it writes its CSV (and any text it prints) into
+# docs/charts/ and plots the PNG with Debian's matplotlib (/usr/bin/python3). Add a chart by
+# adding a step function and its name to STEPS. Uses build/ (or $BUILD_DIR), built first.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${BUILD_DIR:-$root/build}
+charts=$root/docs/charts
+
+ensure_plotting() {
+  /usr/bin/python3 -c "import matplotlib" 2>/dev/null && return
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends python3-matplotlib
+}
+
+# Chart 2: whole bakes against Cycles, error against time (about 10 minutes on 2 busy cores).
+step_bake_vs_cycles() {
+  local work=$build/charts/bake_vs_cycles
+  mkdir -p "$work"
+  # A private Blender profile, so the run neither needs nor changes the user's own.
+  BLENDER_USER_SCRIPTS=$work/scripts BLENDER_USER_CONFIG=$work/config \
+    blender -b --factory-startup --python-exit-code 1 --python "$charts/bake_vs_cycles.py" -- \
+      --addon-zip "$build/bake_radiosity.zip" --csv "$charts/bake_vs_cycles.csv" \
+      --ratios "$charts/bake_vs_cycles_ratios.txt" > "$work/log.txt"
+  cat "$charts/bake_vs_cycles_ratios.txt"
+  /usr/bin/python3 "$charts/plot_bake_vs_cycles.py" "$charts/bake_vs_cycles.csv" "$charts/bake_vs_cycles.png"
+}
+
+# Charts 1 and 3 and the aliasing chart: native measurements (radiosity_charts, about 2 minutes).
+step_native() {
+  cmake --build "$build" -j "$(nproc)" --target radiosity_charts >/dev/null
+  "$build/native/bench/radiosity_charts" "$charts"
+  /usr/bin/python3 "$charts/plot_native.py" "$charts"
+}
+
+STEPS=(native bake_vs_cycles)
+
+"$root/tools/build.sh"
+ensure_plotting
+steps=("$@")
+[ $# -gt 0 ] || steps=("${STEPS[@]}")
+for step in "${steps[@]}"; do
+  echo "== chart: $step"
+  "step_$step"
+done
