@@ -20,14 +20,8 @@ glm::dmat4 to_glm(const Array<double>& m) {
     return out;
 }
 
-py::dict read_grid(const std::string& path, const std::string& name, const Array<double>& object_to_world,
-                   double cell_size, int samples) {
-    const glm::dmat4 matrix = to_glm(object_to_world);
-    vdb::WorldGrid grid;
-    {
-        py::gil_scoped_release release;
-        grid = vdb::read_world_grid(path, name, matrix, cell_size, samples);
-    }
+/// {origin, cell_size, values (nz, ny, nx[, channels])} of a world grid.
+py::dict grid_dict(const vdb::WorldGrid& grid) {
     std::vector<py::ssize_t> shape{grid.dims[2], grid.dims[1], grid.dims[0]};
     if (grid.channels == 3) shape.push_back(3);
     py::array_t<float> values(shape);
@@ -37,6 +31,17 @@ py::dict read_grid(const std::string& path, const std::string& name, const Array
     out["cell_size"] = grid.cell_size;
     out["values"] = values;
     return out;
+}
+
+py::dict read_grid(const std::string& path, const std::string& name, const Array<double>& object_to_world,
+                   double cell_size, int samples) {
+    const glm::dmat4 matrix = to_glm(object_to_world);
+    vdb::WorldGrid grid;
+    {
+        py::gil_scoped_release release;
+        grid = vdb::read_world_grid(path, name, matrix, cell_size, samples);
+    }
+    return grid_dict(grid);
 }
 
 py::dict voxelize_mesh(const Array<float>& positions, const Array<int32_t>& face_offsets,
@@ -52,13 +57,7 @@ py::dict voxelize_mesh(const Array<float>& positions, const Array<int32_t>& face
         grid = vdb::voxelize_mesh_interior(positions.data(), positions.shape(0), face_offsets.data(),
                                            corner_vertices.data(), face_offsets.shape(0) - 1, cell_size, samples);
     }
-    py::array_t<float> values({py::ssize_t(grid.dims[2]), py::ssize_t(grid.dims[1]), py::ssize_t(grid.dims[0])});
-    std::copy(grid.values.begin(), grid.values.end(), values.mutable_data());
-    py::dict out;
-    out["origin"] = py::make_tuple(grid.origin.x, grid.origin.y, grid.origin.z);
-    out["cell_size"] = grid.cell_size;
-    out["values"] = values;
-    return out;
+    return grid_dict(grid);
 }
 
 void write_grids(const std::string& path, const std::vector<double>& origin, double cell_size, const py::dict& grids) {
