@@ -36,8 +36,7 @@ def write(scene, exported_media, result, folder_setting):
     for medium, grids in zip(exported_media.media, result["grids"]):
         path = _output_path(folder, medium.object_name, protected)
         grid = medium.grid
-        native.core().write_vdb(path, grid["origin"], grid["voxel_size"],
-                                {"density": _grey_if_possible(grids["density"]), "emission": grids["emission"]})
+        native.core().write_vdb(path, grid["origin"], grid["voxel_size"], _file_grids(grids))
         volume = bpy.data.volumes.new("%s Radiosity" % medium.object_name)
         volume.filepath = path
         volume.materials.append(material)
@@ -66,11 +65,19 @@ def _output_path(folder, object_name, protected):
     return path
 
 
-def _grey_if_possible(density):
-    """A float grid when the channels agree (Cycles' density is a float); RGB otherwise."""
-    if np.array_equal(density[..., 0], density[..., 1]) and np.array_equal(density[..., 0], density[..., 2]):
-        return np.ascontiguousarray(density[..., 0])
-    return density
+def _file_grids(grids):
+    """`density` and `emission` as float grids when every channel of both agrees, else both RGB.
+
+    Never one of each: Cycles samples a vector grid as if its edge voxels reached half a voxel
+    further out, where a float grid falls to 0, so RGB emission over a float density outlived
+    the medium's edge by a voxel (a fog 8 voxels across rendered 12.5% too bright)."""
+    if _is_grey(grids["density"]) and _is_grey(grids["emission"]):
+        return {name: np.ascontiguousarray(grids[name][..., 0]) for name in ("density", "emission")}
+    return {"density": grids["density"], "emission": grids["emission"]}
+
+
+def _is_grey(rgb):
+    return np.array_equal(rgb[..., 0], rgb[..., 1]) and np.array_equal(rgb[..., 0], rgb[..., 2])
 
 
 def _medium_material():
