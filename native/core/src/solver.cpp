@@ -28,7 +28,7 @@ Gathered gather(const SparseRow& row, int32_t i, const std::vector<Rgb>& radianc
 }
 
 void report(const ProgressFn& progress, std::size_t done, std::size_t total, double residual,
-            const std::vector<Rgb>& radiance) {
+            const std::vector<Rgb>& radiance, std::size_t element_count) {
     if (!progress) return;
     Progress p;
     p.phase = "solve";
@@ -36,7 +36,7 @@ void report(const ProgressFn& progress, std::size_t done, std::size_t total, dou
     p.total = total;
     p.residual = residual;
     p.radiance = radiance.data();
-    p.element_count = radiance.size();
+    p.element_count = element_count;
     if (!progress(p)) throw Cancelled();
 }
 

@@ -25,8 +25,9 @@ struct Gathered {
 Gathered gather(const SparseRow& row, int32_t i, const std::vector<Rgb>& radiance);
 
 /// Calls `progress` (when set) for phase "solve"; throws Cancelled when it returns false.
+/// `radiance` holds the first `element_count` unknowns' elements (zones, if any, follow them).
 void report(const ProgressFn& progress, std::size_t done, std::size_t total, double residual,
-            const std::vector<Rgb>& radiance);
+            const std::vector<Rgb>& radiance, std::size_t element_count);
 
 /// Stops a run whose residual is not finite, or has grown for several sweeps in a row beyond the
 /// first value measured (rows summing above 1 with reflectance near 1 diverge geometrically).

@@ -130,7 +130,7 @@ SolveResult solve_progressive(const Elements& elements, ShootingSource& columns,
         if (shots % n == 0) record();
         if (shots % report_every == 0 && progress) {
             if (settings.ambient) ambient_preview(elements, L, U, preview);
-            report(progress, shots, cap, residual / emitted, settings.ambient ? preview : L);
+            report(progress, shots, cap, residual / emitted, settings.ambient ? preview : L, n);
         }
     }
     if (shots % n != 0) record();  // the history ends with the returned residual

@@ -93,7 +93,7 @@ SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveS
             break;
         }
         // Reports L^{k+1} with the latest measured residual (that of L^k).
-        report(progress, k + 1, cap, residual, L);
+        report(progress, k + 1, cap, residual, L, L.size());
     }
     result.radiance = std::move(L);
     return result;

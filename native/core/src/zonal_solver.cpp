@@ -42,19 +42,6 @@ Gathered gather(const ZonalMatrix& R, std::size_t x, const std::vector<Rgb>& L) 
     return g;
 }
 
-void report(const ProgressFn& progress, std::size_t done, std::size_t total, double residual,
-            const std::vector<Rgb>& L, std::size_t element_count) {
-    if (!progress) return;
-    Progress p;
-    p.phase = "solve";
-    p.done = done;
-    p.total = total;
-    p.residual = residual;
-    p.radiance = L.data();
-    p.element_count = element_count;
-    if (!progress(p)) throw Cancelled();
-}
-
 }  // namespace zonal_detail
 
 namespace {

@@ -27,10 +27,6 @@ struct Gathered {
 };
 Gathered gather(const ZonalMatrix& R, std::size_t x, const std::vector<Rgb>& L);
 
-/// Progress phase "solve" over all unknowns; throws Cancelled when the callback says stop.
-void report(const ProgressFn& progress, std::size_t done, std::size_t total, double residual,
-            const std::vector<Rgb>& L, std::size_t element_count);
-
 SolveResult solve_sweeps(const Terms& t, const ZonalMatrix& R, const SolveSettings& settings,
                          const ProgressFn& progress, std::size_t element_count);
 SolveResult solve_progressive(const Terms& t, const ZonalMatrix& R, const SolveSettings& settings,

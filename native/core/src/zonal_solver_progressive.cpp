@@ -82,7 +82,7 @@ SolveResult solve_progressive(const Terms& t, const ZonalMatrix& R, const SolveS
         ++shots;
         if (!std::isfinite(residual)) guard.check(residual);
         if (shots % n == 0) record();
-        if (shots % report_every == 0) report(progress, shots, cap, residual / emitted, L, element_count);
+        if (shots % report_every == 0) detail::report(progress, shots, cap, residual / emitted, L, element_count);
     }
     if (shots % n != 0) record();
     result.residual = residual / emitted;

@@ -67,7 +67,7 @@ SolveResult solve_sweeps(const Terms& t, const ZonalMatrix& R, const SolveSettin
             result.converged = true;
             break;
         }
-        report(progress, k + 1, cap, residual, L, element_count);
+        detail::report(progress, k + 1, cap, residual, L, element_count);
     }
     result.radiance = std::move(L);
     return result;
