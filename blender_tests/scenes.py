@@ -93,6 +93,37 @@ def emission(name, color, strength):
     return material
 
 
+def furnace_material(rho, emitted):
+    """Diffuse + Emission through an Add Shader, which the export must sum."""
+    material = bpy.data.materials.new("Furnace")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    bsdf = nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (rho, rho, rho, 1)
+    light = nodes.new("ShaderNodeEmission")
+    light.inputs["Strength"].default_value = emitted
+    add = nodes.new("ShaderNodeAddShader")
+    output = nodes.new("ShaderNodeOutputMaterial")
+    links = material.node_tree.links
+    links.new(bsdf.outputs[0], add.inputs[0])
+    links.new(light.outputs[0], add.inputs[1])
+    links.new(add.outputs[0], output.inputs["Surface"])
+    return material
+
+
+def furnace_box(rho, emitted, cells=4):
+    """A closed unit cube seen from inside (normals inward), each side a cells x cells grid, every
+    face emitting `emitted` and reflecting `rho`: the exact radiance is emitted / (1 - rho)."""
+    sides = [  # (origin, u, v) with u x v pointing into the box
+        ((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 1), (0, 1, 0), (1, 0, 0)),
+        ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, 1)),
+        ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0)),
+    ]
+    return mesh_object("Furnace", [grid(o, u, v, cells, cells) + (0,) for o, u, v in sides],
+                       [furnace_material(rho, emitted)])
+
+
 def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
     """The Cornell box as one mesh object (open at -Y, 1 m wide, floor at z = 0), lit by
     'MESH' (an emitting opening in the ceiling, radiance `radiance`), 'AREA' (an area lamp

@@ -57,6 +57,7 @@ def test_parallel_plates():
     scene = bpy.context.scene
     scene.radiosity.element_size = 0.05
     scene.radiosity.method = "GAUSS_SEIDEL"
+    assert scene.radiosity.quality == "CUSTOM", "setting element size must switch quality to Custom"
 
     view_layer, depsgraph = pipeline.view_layer_and_depsgraph(scene)
     job = pipeline.BakeJob(scene, depsgraph, view_layer)
@@ -89,14 +90,7 @@ def test_parallel_plates():
 def test_furnace():
     rho, emitted = 0.5, 1.0
     scenes.clear_scene()
-    material = furnace_material(rho, emitted)
-    # A closed unit cube with inward normals, each side a 4 x 4 grid.
-    sides = [  # (origin, u, v) with u x v pointing into the box
-        ((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 1), (0, 1, 0), (1, 0, 0)),
-        ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, 1)),
-        ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0)),
-    ]
-    box = scenes.mesh_object("Furnace", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in sides], [material])
+    box = scenes.furnace_box(rho, emitted, cells=4)
     summary = addon.bake(bpy.context.scene, element_size=0.125, method="GAUSS_SEIDEL", tolerance=1e-6)
     colors = harness.corner_colors(box.data, "Radiosity")
     expected = emitted / (1 - rho)
@@ -104,25 +98,6 @@ def test_furnace():
     print("furnace: %d corners, expected %.4f, min %.5f max %.5f, worst error %.3f%%, %d iterations"
           % (len(colors), expected, colors.min(), colors.max(), 100 * error.max(), summary["iterations"]))
     assert error.max() < 0.005
-
-
-def furnace_material(rho, emitted):
-    """Diffuse + Emission through an Add Shader, which the export must sum."""
-    material = bpy.data.materials.new("Furnace")
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.clear()
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (rho, rho, rho, 1)
-    light = nodes.new("ShaderNodeEmission")
-    light.inputs["Strength"].default_value = emitted
-    add = nodes.new("ShaderNodeAddShader")
-    output = nodes.new("ShaderNodeOutputMaterial")
-    links = material.node_tree.links
-    links.new(diffuse.outputs[0], add.inputs[0])
-    links.new(light.outputs[0], add.inputs[1])
-    links.new(add.outputs[0], output.inputs["Surface"])
-    return material
 
 
 harness.run(test_closed_forms_themselves, test_parallel_plates, test_furnace)

@@ -1,7 +1,7 @@
 """Headless baking from the command line.
 
     blender -b scene.blend --python-expr "import bake_radiosity.cli as c; c.main()" -- \\
-        --output baked.blend [--resolution 256] [--element-size 0.05] [--method PROGRESSIVE] ...
+        --output baked.blend [--quality HIGH] [--resolution 256] [--element-size 0.05] ...
 
 or, with the path of this file:  blender -b scene.blend --python .../bake_radiosity/cli.py -- ...
 
@@ -19,11 +19,14 @@ def parse(argv):
                                      description="Bake radiosity into colour attributes and save.")
     parser.add_argument("--output", help="where to save the baked file (default: overwrite the input)")
     parser.add_argument("--scene", help="scene to bake (default: the file's active scene)")
+    parser.add_argument("--quality", choices=("DRAFT", "MEDIUM", "HIGH", "CUSTOM"),
+                        help="preset; naming --method, --resolution, --element-size or --tolerance alone means CUSTOM")
     parser.add_argument("--method", choices=("AUTO", "GAUSS_SEIDEL", "PROGRESSIVE", "JACOBI"))
     parser.add_argument("--resolution", type=int, dest="hemicube_resolution", help="hemi-cube resolution")
     parser.add_argument("--element-size", type=float, help="largest element edge in metres (0 = faces)")
     parser.add_argument("--tolerance", type=float, help="relative residual to stop at")
     parser.add_argument("--max-iterations", type=int)
+    parser.add_argument("--memory-budget", type=int, help="megabytes the stored form factors may take")
     parser.add_argument("--hard-edge-angle", type=float, help="degrees")
     parser.add_argument("--attribute-name")
     parser.add_argument("--target", choices=("ORIGINAL", "COPIES"))
@@ -64,6 +67,7 @@ def _bake_and_save(arguments):
     for warning in summary["warnings"]:
         print("Bake Radiosity warning: %s" % warning, flush=True)
     print("Bake Radiosity: %s" % scene.radiosity.last_report, flush=True)
+    print("Bake Radiosity: %s" % scene.radiosity.last_accuracy, flush=True)
     output = arguments.output or bpy.data.filepath
     if not output:
         raise RuntimeError("no --output given and the scene was never saved")

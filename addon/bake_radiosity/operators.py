@@ -66,6 +66,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
         for warning in summary["warnings"]:
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, "Bake Radiosity: " + context.scene.radiosity.last_report)
+        self.report({"INFO"}, "Bake Radiosity: " + context.scene.radiosity.last_accuracy)
         return {"FINISHED"}
 
     def invoke(self, context, event):
@@ -136,6 +137,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
         for warning in summary["warnings"]:
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, "Bake Radiosity: " + scene.radiosity.last_report)
+        self.report({"INFO"}, "Bake Radiosity: " + scene.radiosity.last_accuracy)
         return {"FINISHED"}
 
     def _cleanup(self, context):

@@ -1,26 +1,22 @@
 """The bake pipeline: export (needs bpy) -> solve (no bpy, may run in a worker thread) ->
 write back (needs bpy). `bake(scene, **overrides)` runs all three; the operator splits them."""
 
+import functools
 import math
-import os
 import time
 
 import bpy
-import numpy as np
 
-from . import export, native, writeback
+from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
+               writeback)
 
-SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "max_iterations",
-                 "hard_edge_angle", "attribute_name", "target")
-CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive"}
+SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "max_iterations",
+                 "memory_budget", "hard_edge_angle", "attribute_name", "target", "zone_size", "media_folder")
+# Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
+CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance")
+QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
 METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement"}
 TARGETS = ("ORIGINAL", "COPIES")
-
-# AUTO's memory model for the stored matrix: a closed room sees about half of itself from each
-# element, and each stored factor costs a float32 value plus an int32 column index.
-NONZERO_FRACTION = 0.5
-BYTES_PER_NONZERO = 8
-MAX_MATRIX_BUDGET = 4 << 30
 
 
 class BakeError(RuntimeError):
@@ -34,36 +30,16 @@ def settings_of(scene, overrides=None):
     if unknown:
         raise TypeError("unknown bake setting(s) %s; known: %s" % (", ".join(unknown), ", ".join(SETTING_NAMES)))
     settings = {name: getattr(scene.radiosity, name) for name in SETTING_NAMES}
+    if "quality" not in overrides and any(name in overrides for name in CUSTOM_SETTING_NAMES):
+        overrides["quality"] = "CUSTOM"
     settings.update(overrides)
-    if settings["method"] not in ("AUTO",) + tuple(CORE_METHODS):
+    if settings["quality"] not in QUALITIES:
+        raise TypeError("quality must be DRAFT, MEDIUM, HIGH or CUSTOM, got %r" % settings["quality"])
+    if settings["method"] not in ("AUTO",) + tuple(auto_settings.CORE_METHODS):
         raise TypeError("method must be AUTO, GAUSS_SEIDEL, PROGRESSIVE or JACOBI, got %r" % settings["method"])
     if settings["target"] not in TARGETS:
         raise TypeError("target must be ORIGINAL or COPIES, got %r" % settings["target"])
     return settings
-
-
-def matrix_budget_bytes():
-    """A quarter of physical memory, at most 4 GiB: room for Blender and the rest of the bake."""
-    try:
-        physical = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):
-        physical = 8 << 30
-    return min(MAX_MATRIX_BUDGET, physical // 4)
-
-
-def estimated_elements(exported, element_size):
-    _, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
-    if element_size <= 0.0:
-        return len(areas)
-    return int(np.maximum(1.0, np.ceil(areas / element_size ** 2)).sum())
-
-
-def core_method(settings, exported):
-    if settings["method"] != "AUTO":
-        return CORE_METHODS[settings["method"]]
-    elements = estimated_elements(exported, settings["element_size"])
-    matrix_bytes = float(elements) ** 2 * NONZERO_FRACTION * BYTES_PER_NONZERO
-    return "gauss_seidel" if matrix_bytes <= matrix_budget_bytes() else "progressive"
 
 
 class BakeJob:
@@ -77,10 +53,21 @@ class BakeJob:
         if self.exported.polygon_count == 0:
             raise BakeError("Nothing to bake: no visible mesh in view layer '%s'" % view_layer.name)
         self.warnings = list(self.exported.warnings)
-        if not self.exported.lights and not self.exported.emission.any():
+        self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
+        self.warnings += self.media.warnings
+        if self.media.media and self.exported.lights:
+            raise BakeError("Point, spot and sun lamps are not shot through fog yet: light a scene with media "
+                            "by area lamps or emitting meshes")
+        if not self.exported.lights and not self.exported.emission.any() and not any(
+                m.grid["emission"].any() for m in self.media.media):
             self.warnings.append("The scene has no emitting material and no lamp: the bake will be black")
-        self.method = core_method(self.settings, self.exported)
+        self.choice = auto_settings.choose(self.settings, self.exported)
+        self.warnings += auto_settings.warnings_for(self.choice)
         self.result = None
+
+    @property
+    def method(self):
+        return self.choice.method
 
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
@@ -92,32 +79,49 @@ class BakeJob:
         """(element_vertices, element_corners) in the order progress reports radiance."""
         e = self.exported
         layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
-                                        e.emission, e.material, element_size=float(self.settings["element_size"]))
+                                        e.emission, e.material, element_size=self.choice.element_size)
         return layout["element_vertices"], layout["element_corners"]
 
     def _run_core(self, method, max_iterations, progress):
-        e, s = self.exported, self.settings
-        resolution = int(s["hemicube_resolution"])
-        return native.core().bake(
+        e, c = self.exported, self.choice
+        bake = native.core().bake
+        if self.media.media:  # the zonal bake: surfaces and media in one system
+            bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media])
+        return bake(
             e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
-            element_size=float(s["element_size"]), resolution=resolution + resolution % 2,
-            method=method, tolerance=float(s["tolerance"]), max_iterations=max_iterations,
-            hard_edge_angle=float(s["hard_edge_angle"]), lights=e.lights, progress=progress)
+            element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
+            max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
+            lights=e.lights, matrix_budget_bytes=c.budget_bytes, progress=progress)
 
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
         start = time.perf_counter()
         self.warnings += writeback.write(scene, self.exported, self.result, self.settings)
+        media_files = (media_writeback.write(scene, self.media, self.result, self.settings["media_folder"])
+                       if self.media.media else [])
         seconds_writeback = time.perf_counter() - start
-        r = self.result
+        r, c = self.result, self.choice
+        power = media_energy.balance(r) if self.media.media else energy.balance(r)
+        error = error_estimate.estimate(r)
         summary = {
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
-            "matrix_bytes": r["matrix_bytes"], "warnings": list(self.warnings),
+            "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
+            "tolerance": c.tolerance, "scene_size": c.scene_size,
+            "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
+            "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
+            "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
+                       "leaving": power.leaving, "absorbed_fraction": power.absorbed_fraction},
+            "error_estimate": {"solve_bound": error.solve_bound, "discretisation": error.discretisation,
+                               "discretisation_vs_cycles": error.discretisation_vs_cycles,
+                               "discretisation_relation": error.discretisation_relation},
+            "zones": r.get("zones", 0), "zone_size": self.media.zone_size, "media_files": media_files,
+            "warnings": list(self.warnings),
             "seconds": {"export": self.seconds_export, "form_factors": r["seconds"]["form_factors"],
                         "solve": r["seconds"]["solve"], "writeback": seconds_writeback},
         }
         scene.radiosity.last_report = report_line(summary)
+        scene.radiosity.last_accuracy = accuracy_line(summary)
         return summary
 
     def _skipped_warnings(self):
@@ -135,9 +139,23 @@ class BakeJob:
 def report_line(summary):
     seconds = sum(summary["seconds"].values())
     state = "converged" if summary["converged"] else "NOT converged"
-    return "%d elements, %s, %d iterations, residual %.2g (%s), %.1f s" % (
-        summary["elements"], METHOD_LABELS[summary["method"]], summary["iterations"],
+    zones = ", %d zones of %.3g m" % (summary["zones"], summary["zone_size"]) if summary.get("zones") else ""
+    return "%d elements%s, %s, %d iterations, residual %.2g (%s), %.1f s" % (
+        summary["elements"], zones, METHOD_LABELS[summary["method"]], summary["iterations"],
         summary["residual"], state, seconds)
+
+
+def accuracy_line(summary):
+    """Residual; energy balance; error estimate (the panel shows one part a line)."""
+    power, error = summary["energy"], summary["error_estimate"]
+    lost = power["lost"] / power["emitted"] if power["emitted"] > 0.0 else 0.0
+    return "; ".join((
+        "Residual %.1e" % summary["residual"],
+        "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
+            power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
+        "Error typically %s %.1f%% (element size, measured on the Cornell box) + at most %.2g%% (solve)" % (
+            error["discretisation_relation"], 100 * error["discretisation"], 100 * error["solve_bound"]),
+    ))
 
 
 def view_layer_and_depsgraph(scene):
@@ -175,10 +193,13 @@ def progress_text(info):
 
 def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
-    method, warnings, and seconds per phase (export, form_factors, solve, writeback).
+    method and the settings chosen (quality, element_size, resolution, tolerance, matrix memory),
+    energy (watts emitted, absorbed, lost), error_estimate (solve bound, measured discretisation
+    error), warnings, and seconds per phase (export, form_factors, solve, writeback).
 
     `overrides` take any scene.radiosity setting by name for this bake only, e.g.
-    bake(scene, hemicube_resolution=256, element_size=0.05, method="PROGRESSIVE").
+    bake(scene, quality="HIGH") or bake(scene, element_size=0.05, method="PROGRESSIVE"); naming
+    method, hemicube_resolution, element_size or tolerance without a quality means CUSTOM.
     """
     view_layer, depsgraph = view_layer_and_depsgraph(scene)
     job = BakeJob(scene, depsgraph, view_layer, overrides)

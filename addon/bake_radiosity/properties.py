@@ -6,13 +6,39 @@ import bpy
 from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
 
 
+def _switch_to_custom(settings, _context):
+    # Setting one of the individual settings (from Python; the panel shows them only in Custom)
+    # means the artist wants that value, which a preset would override.
+    if settings.quality != "CUSTOM":
+        settings.quality = "CUSTOM"
+
+
 class RadiositySettings(bpy.types.PropertyGroup):
+    quality: EnumProperty(
+        name="Quality",
+        description="How fine and how exact the bake is. The presets choose element size (relative to "
+                    "the scene's size), hemi-cube resolution, tolerance and method; Custom shows each",
+        items=(
+            ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution 64, tolerance 1e-3"),
+            ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution 128, tolerance 1e-4"),
+            ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution 192, tolerance 1e-5"),
+            ("CUSTOM", "Custom", "Set element size, resolution, tolerance and method yourself"),
+        ),
+        default="MEDIUM",
+    )
+    memory_budget: IntProperty(
+        name="Memory Budget",
+        description="Megabytes the table of form factors may take. Automatic method stores the table "
+                    "(Gauss-Seidel) when its worst case fits, otherwise it shoots light progressively "
+                    "with memory in proportion to the scene",
+        default=2048, min=1, soft_max=65536, subtype="UNSIGNED",
+    )
     method: EnumProperty(
         name="Method",
         description="How the radiosity equations are solved",
         items=(
             ("AUTO", "Automatic",
-             "Gauss-Seidel when the form-factor matrix fits in memory, otherwise progressive refinement"),
+             "Gauss-Seidel when the form factors fit the memory budget, otherwise progressive refinement"),
             ("GAUSS_SEIDEL", "Gauss-Seidel",
              "Store every form factor once, then gather until converged. Fastest for small and medium scenes"),
             ("PROGRESSIVE", "Progressive Refinement",
@@ -22,24 +48,28 @@ class RadiositySettings(bpy.types.PropertyGroup):
              "Like Gauss-Seidel but every element is updated from the previous sweep. Slower; for comparison"),
         ),
         default="AUTO",
+        update=_switch_to_custom,
     )
     hemicube_resolution: IntProperty(
         name="Hemi-cube Resolution",
         description="Cells along the edge of the hemi-cube's top face. Higher finds smaller and more "
                     "distant surfaces at the cost of time (64 quick look, 128 normal, 256 final)",
         default=128, min=16, max=2048, soft_max=512,
+        update=_switch_to_custom,
     )
     element_size: FloatProperty(
         name="Element Size",
         description="Largest edge of the elements that faces are split into, in scene units. "
                     "0 keeps one element per face. Smaller gives sharper shadows and slower bakes",
         default=0.1, min=0.0, soft_max=2.0, subtype="DISTANCE", unit="LENGTH", precision=3,
+        update=_switch_to_custom,
     )
     tolerance: FloatProperty(
         name="Tolerance",
         description="Stop when the remaining error of the solution, relative to the emitted light, "
                     "falls below this (1e-3 preview, 1e-4 final)",
         default=1e-4, min=1e-8, max=0.5, precision=6,
+        update=_switch_to_custom,
     )
     max_iterations: IntProperty(
         name="Max Iterations",
@@ -86,6 +116,11 @@ class RadiositySettings(bpy.types.PropertyGroup):
     last_report: StringProperty(
         name="Last Bake",
         description="Summary of the most recent bake of this scene",
+        default="",
+    )
+    last_accuracy: StringProperty(
+        name="Last Bake Accuracy",
+        description="Residual, energy balance and error estimate of the most recent bake",
         default="",
     )
 

@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import preview
+from . import auto_settings, preview
 
 
 def draw_panel(layout, context):
@@ -18,13 +18,23 @@ def draw_panel(layout, context):
     if settings.last_report:
         box = layout.box()
         box.label(text=settings.last_report, icon="INFO")
+        # Residual, energy balance and error estimate, one line each.
+        for part in settings.last_accuracy.split("; ") if settings.last_accuracy else ():
+            box.label(text=part)
 
     column = layout.column()
-    column.prop(settings, "method")
-    column.prop(settings, "element_size")
-    column.prop(settings, "hemicube_resolution", text="Resolution")
-    column.prop(settings, "tolerance")
-    column.prop(settings, "max_iterations")
+    column.prop(settings, "quality")
+    preset = auto_settings.PRESETS.get(settings.quality)
+    if preset is None:
+        column.prop(settings, "method")
+        column.prop(settings, "element_size")
+        column.prop(settings, "hemicube_resolution", text="Resolution")
+        column.prop(settings, "tolerance")
+        column.prop(settings, "max_iterations")
+    else:
+        column.label(text="Elements 1/%d of the scene, resolution %d, tolerance %g"
+                     % (preset.divisions, preset.resolution, preset.tolerance))
+    column.prop(settings, "memory_budget", text="Memory Budget (MB)")
     column.prop(settings, "hard_edge_angle")
     column.separator()
     column.prop(settings, "target")

@@ -1,0 +1,85 @@
+"""The artist's Quality and the Automatic method as concrete bake settings: element size from the
+scene's size, resolution and tolerance from the preset, method from the core's own memory model
+and the memory budget. No bpy: numbers from the exported arrays only."""
+
+import math
+from dataclasses import dataclass
+
+from . import export, native
+
+CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive"}
+MEBIBYTE = 1 << 20
+
+
+@dataclass(frozen=True)
+class Preset:
+    divisions: int      # element size = scene size / divisions (about 6 divisions^2 elements)
+    resolution: int     # 4 x divisions: an element one scene size away covers about 2 cells across
+    tolerance: float
+
+
+PRESETS = {
+    "DRAFT": Preset(16, 64, 1e-3),
+    "MEDIUM": Preset(32, 128, 1e-4),
+    "HIGH": Preset(48, 192, 1e-5),
+}
+
+
+@dataclass(frozen=True)
+class Choice:
+    """What a bake will run with, and why (the numbers the summary reports)."""
+    element_size: float
+    resolution: int
+    tolerance: float
+    method: str                 # core name: gauss_seidel, jacobi, progressive
+    elements: int
+    scene_size: float
+    matrix_bytes_bound: int     # the core's worst case for the stored matrix
+    budget_bytes: int
+
+
+def scene_size(exported):
+    """Side of the cube with the scene's surface area. For a room it is about the room's size, and
+    a long corridor is not judged by its length alone, so the element count a preset gives stays
+    near 6 x divisions^2 whatever the scene's shape."""
+    _, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
+    return math.sqrt(float(areas.sum()) / 6.0)
+
+
+def choose(settings, exported):
+    """The Choice for `settings` (pipeline.settings_of) on `exported`."""
+    size = scene_size(exported)
+    preset = PRESETS.get(settings["quality"])
+    if preset is None:
+        element_size = float(settings["element_size"])
+        resolution = int(settings["hemicube_resolution"])
+        tolerance = float(settings["tolerance"])
+    else:
+        element_size, resolution, tolerance = size / preset.divisions, preset.resolution, preset.tolerance
+    resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
+
+    core = native.core()
+    layout = core.elements(exported.positions, exported.face_offsets, exported.corner_vertices,
+                           exported.reflectance, exported.emission, exported.material, element_size=element_size)
+    elements = int(layout["elements"])
+    bound = int(core.matrix_bytes_bound(elements, resolution))
+    budget = int(settings["memory_budget"]) * MEBIBYTE
+    if preset is None and settings["method"] != "AUTO":
+        method = CORE_METHODS[settings["method"]]
+    else:
+        # Within the budget the core stores F and Gauss-Seidel is fastest (docs/benchmarks.md);
+        # beyond it only progressive refinement solves in memory O(n) without re-rendering every
+        # row each sweep.
+        method = "gauss_seidel" if bound <= budget else "progressive"
+    return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance, method=method,
+                  elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget)
+
+
+def warnings_for(choice):
+    """Choices an artist made that will be slow, with what to do instead."""
+    if choice.method in ("gauss_seidel", "jacobi") and choice.matrix_bytes_bound > choice.budget_bytes:
+        return ["The form factors of %d elements may need %.0f MB, more than the memory budget (%.0f MB): "
+                "every sweep renders every hemi-cube again, which is slow. Method Automatic would shoot "
+                "progressively instead" % (choice.elements, choice.matrix_bytes_bound / MEBIBYTE,
+                                           choice.budget_bytes / MEBIBYTE)]
+    return []
