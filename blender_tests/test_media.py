@@ -62,13 +62,15 @@ def exported_media():
 
 
 def baked_ratio(summary):
-    """Zone radiance L = emission / density of the baked VDB (read back from the file)."""
+    """Zone radiance L = emission / density of the baked VDB (read back from the file onto the
+    zones' lattice: the fine cells' box average, which keeps each zone's power), (n, channels)."""
     (path,) = summary["media_files"]
     density = core.read_vdb_grid(path, "density", np.eye(4), ZONE)
     emission = core.read_vdb_grid(path, "emission", np.eye(4), ZONE)
     d = density["values"] if density["values"].ndim == 4 else density["values"][..., None]
+    e = emission["values"] if emission["values"].ndim == 4 else emission["values"][..., None]
     inside = d[..., 0] > 0.5 * d[..., 0].max()
-    return emission["values"][inside] / d[inside]
+    return e[inside] / d[inside]
 
 
 def test_mesh_medium_export():

@@ -1,6 +1,9 @@
 """The solved media into the file: per medium an OpenVDB file with grids `density` (extinction
-K_t) and `emission` (K_t L), loaded as a Volume object in the "Radiosity Bake" collection with a
-purely absorbing, emitting material, so Cycles renders the seed's ray integral (zonal_bake.h)."""
+K_t) and `emission` (K_t J), loaded as a Volume object in the "Radiosity Bake" collection with a
+purely absorbing, emitting material, so Cycles renders the seed's ray integral (zonal_bake.h).
+The grids come from the core finer than the zones (bake_with_media's grid_subdivision, 3 cells
+per zone edge by default), J interpolated between zones (zonal_grids.h), with their own origin
+and voxel size."""
 
 import os
 import re
@@ -35,8 +38,7 @@ def write(scene, exported_media, result, folder_setting):
     paths = []
     for medium, grids in zip(exported_media.media, result["grids"]):
         path = _output_path(folder, medium.object_name, protected)
-        grid = medium.grid
-        native.core().write_vdb(path, grid["origin"], grid["voxel_size"], _file_grids(grids))
+        native.core().write_vdb(path, grids["origin"], grids["voxel_size"], _file_grids(grids))
         volume = bpy.data.volumes.new("%s Radiosity" % medium.object_name)
         volume.filepath = path
         volume.materials.append(material)

@@ -70,12 +70,13 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
                                 float element_size, int resolution, const std::string& method, double tolerance,
                                 int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                                 std::size_t matrix_budget_bytes, const py::object& progress,
-                                const py::list& media_list, int zone_resolution) {
+                                const py::list& media_list, int zone_resolution, int grid_subdivision) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
     const BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                                 hard_edge_angle, ambient, lights, matrix_budget_bytes);
     if (zone_resolution < 8 || zone_resolution % 2 != 0)
         throw py::value_error("zone_resolution must be an even number >= 8");
+    if (grid_subdivision < 1) throw py::value_error("grid_subdivision must be at least 1");
     std::vector<Medium> media;
     for (std::size_t i = 0; i < media_list.size(); ++i) media.push_back(parse_medium(media_list[i], i));
 
@@ -83,7 +84,7 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
     ZonalBakeResult result;
     try {
         py::gil_scoped_release release;
-        result = bake_with_media(input, media, settings, zone_resolution, reporter.function());
+        result = bake_with_media(input, media, settings, zone_resolution, reporter.function(), grid_subdivision);
     } catch (const Cancelled&) {
         reporter.rethrow_if_failed();
         throw;
@@ -103,10 +104,12 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
     out["zone_albedo"] = to_numpy(zones.albedo);
     out["zone_incident"] = to_numpy(result.zone_incident);
     py::list grids;
-    for (std::size_t i = 0; i < media.size(); ++i) {
+    for (const MediumGrids& grid : result.grids) {
         py::dict g;
-        g["density"] = grid_array(result.grids[i].density, media[i].dims);
-        g["emission"] = grid_array(result.grids[i].emission, media[i].dims);
+        g["origin"] = py::make_tuple(grid.origin.x, grid.origin.y, grid.origin.z);
+        g["voxel_size"] = grid.voxel_size;
+        g["density"] = grid_array(grid.density, grid.dims);
+        g["emission"] = grid_array(grid.emission, grid.dims);
         grids.append(g);
     }
     out["grids"] = grids;
@@ -157,13 +160,14 @@ void bind_zonal(py::module_& m) {
           "bake() with participating media: media = [{origin, voxel_size, extinction, albedo, emission "
           "(nz, ny, nx, 3)}]. Returns bake()'s dict plus zones (count), zone_radiance, zone_medium, "
           "zone_weight (4 K_t V), zone_emitted, zone_albedo, zone_incident, and per medium grids "
-          "[{density: K_t, emission: K_t L}].",
+          "[{origin, voxel_size, density: K_t, emission: K_t J}] at grid_subdivision cells per zone edge, J "
+          "interpolated between zones keeping each zone's power (zonal_grids.h).",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "resolution"_a = 128,
           "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
           "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
           "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes, "progress"_a = py::none(),
-          "media"_a = py::list(), "zone_resolution"_a = 32);
+          "media"_a = py::list(), "zone_resolution"_a = 32, "grid_subdivision"_a = 3);
     m.def("principled_volume", &principled_volume_arrays,
           "Cycles' Principled Volume per voxel (blackbody excluded): {scattering, absorption, emission}, "
           "each shape + (3,), from density and emission_strength grids of one shape.",

@@ -16,7 +16,7 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 }  // namespace
 
 ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
-                                int zone_resolution, const ProgressFn& progress) {
+                                int zone_resolution, const ProgressFn& progress, int grid_subdivision) {
     ZonalBakeResult result;
     BakeResult& bake = result.surfaces;
 
@@ -59,17 +59,12 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     bake.colors = interpolate_corners(elements, bake.solve.radiance, input.material, settings.hard_edge_angle);
     bake.seconds_interpolate = seconds_since(start);
 
-    result.grids.resize(media.size());
-    for (std::size_t i = 0; i < media.size(); ++i) {
-        result.grids[i].density.assign(media[i].voxel_count(), Rgb(0.0));
-        result.grids[i].emission.assign(media[i].voxel_count(), Rgb(0.0));
-    }
-    for (std::size_t k = 0; k < result.zones.size(); ++k) {
-        MediumGrids& g = result.grids[result.zones.medium[k]];
-        const std::size_t v = result.zones.voxel[k];
-        g.density[v] = result.zones.extinction[k];
-        g.emission[v] = result.zones.extinction[k] * result.zone_radiance[k];
-    }
+    std::vector<std::vector<Rgb>> radiance(media.size());
+    for (std::size_t i = 0; i < media.size(); ++i) radiance[i].assign(media[i].voxel_count(), Rgb(0.0));
+    for (std::size_t k = 0; k < result.zones.size(); ++k)
+        radiance[result.zones.medium[k]][result.zones.voxel[k]] = result.zone_radiance[k];
+    for (std::size_t i = 0; i < media.size(); ++i)
+        result.grids.push_back(medium_grids(media[i], radiance[i], grid_subdivision));
     return result;
 }
 

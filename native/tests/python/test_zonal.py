@@ -38,10 +38,24 @@ class IsothermalTest(unittest.TestCase):
                 np.testing.assert_allclose(r["element_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
                 np.testing.assert_allclose(r["corner_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
                 np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (64, 1)), rtol=5e-3)
-                grids = r["grids"][0]
-                self.assertEqual(grids["density"].shape, (4, 4, 4, 3))
+                grids = r["grids"][0]  # 3 cells per zone edge by default, on the medium's corner
+                self.assertEqual(grids["density"].shape, (12, 12, 12, 3))
+                self.assertEqual(grids["origin"], (0.0, 0.0, 0.0))
+                self.assertAlmostEqual(grids["voxel_size"], 0.25 / 3, places=7)
                 np.testing.assert_allclose(grids["density"], K, rtol=1e-6)
-                np.testing.assert_allclose(grids["emission"], np.broadcast_to(K * L0, (4, 4, 4, 3)), rtol=5e-3)
+                np.testing.assert_allclose(grids["emission"], np.broadcast_to(K * L0, (12, 12, 12, 3)), rtol=5e-3)
+
+    def test_grid_subdivision_one_is_the_zones(self):
+        v, f, c, _, _ = box_arrays()
+        r = bake((v, f, c, np.zeros((6, 3), np.float32), np.ones((6, 3), np.float32)), [fog(0.0, 2.0, 0.5)],
+                 grid_subdivision=1)
+        grids = r["grids"][0]
+        self.assertEqual(grids["emission"].shape, (4, 4, 4, 3))
+        self.assertEqual(grids["voxel_size"], 0.25)
+        np.testing.assert_allclose(grids["emission"].reshape(-1, 3), 2.0 * r["zone_radiance"], rtol=1e-6)
+        with self.assertRaisesRegex(ValueError, "grid_subdivision"):
+            bake((v, f, c, np.zeros((6, 3), np.float32), np.ones((6, 3), np.float32)), [fog(0.0, 2.0, 0.5)],
+                 grid_subdivision=0)
 
     def test_scattering_medium_takes_the_black_walls_radiance(self):
         L0 = np.array([1.0, 0.5, 2.0])

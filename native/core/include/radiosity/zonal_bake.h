@@ -2,23 +2,21 @@
 /// @brief The bake with participating media: elements, zones, exchange factors, the coupled solve,
 /// corner colours and the grids a renderer needs to show the media.
 ///
-/// Output grids per medium (its dims, x fastest, zero outside zones): `density` = K_t and
-/// `emission` = K_t * L_k per channel. A purely absorbing volume with these, as Cycles renders
-/// one (emission * tau ds along the ray), gives the seed's ray integral (13): inside zone k,
-/// int J_k K_t tau ds = J_k (tau_in - tau_out), J_k = L_k. Where K_t differs per channel the
-/// density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1 and absorption
-/// colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per channel otherwise.
+/// Output grids per medium (zonal_grids.h): `density` = K_t and `emission` = K_t J on a lattice
+/// `grid_subdivision` times finer than the zones, J interpolated between the zones' radiances L_k
+/// (at subdivision 1: K_t L_k per zone, zero outside zones). A purely absorbing volume with these,
+/// as Cycles renders one (emission * tau ds along the ray), gives the seed's ray integral (13):
+/// inside zone k, int J K_t tau ds = J (tau_in - tau_out) where J is constant. Where K_t differs
+/// per channel the density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1
+/// and absorption colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per
+/// channel otherwise.
 #pragma once
 
 #include "radiosity/bake.h"
 #include "radiosity/zonal.h"
+#include "radiosity/zonal_grids.h"
 
 namespace radiosity {
-
-struct MediumGrids {
-    std::vector<Rgb> density;   ///< K_t per voxel, 1/m
-    std::vector<Rgb> emission;  ///< K_t L per voxel: radiance per metre for an absorbing volume
-};
 
 struct ZonalBakeResult {
     /// As bake() returns it; solve.radiance and colors hold the elements only.
@@ -28,7 +26,7 @@ struct ZonalBakeResult {
     /// H_k = sum_y R_ky L_y: the mean radiance a zone receives, so a caller can count the power it
     /// absorbs, pi (4 K_t V) (1 - Omega) H_k (its radiance alone cannot say when Omega = 0).
     std::vector<Rgb> zone_incident;
-    std::vector<MediumGrids> grids;  ///< per medium
+    std::vector<MediumGrids> grids;  ///< per medium, at grid_subdivision (medium_grids())
     double seconds_zones = 0.0;
 };
 
@@ -38,6 +36,6 @@ struct ZonalBakeResult {
 /// sun lamps are not shot through media yet, so settings.lights must be empty when there are zones
 /// (InputError); emitting polygons light media. Progress phases "form_factors", "solve"; throws Cancelled.
 ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
-                                int zone_resolution = 32, const ProgressFn& progress = {});
+                                int zone_resolution = 32, const ProgressFn& progress = {}, int grid_subdivision = 1);
 
 }  // namespace radiosity
