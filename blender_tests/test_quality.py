@@ -18,6 +18,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
+ui = sys.modules[harness.MODULE + ".ui"]
 
 # The presets as the user guide documents them: (element size as a fraction of the scene's size,
 # hemi-cube resolution, tolerance).
@@ -102,6 +103,49 @@ def test_automatic_method_follows_the_memory_budget():
     assert "Gauss-Seidel" in run.stdout and "Power" in run.stdout, run.stdout
 
 
+class RecordingLayout:
+    """Stands in for Blender's UILayout (there is none with -b): records what the panel draws and
+    fails on a property the settings do not have."""
+
+    def __init__(self, drawn):
+        self.drawn = drawn
+
+    def __getattr__(self, name):  # row, column, box: nested layouts into the same record
+        return lambda *args, **kwargs: RecordingLayout(self.drawn)
+
+    def prop(self, data, name, **_):
+        assert name in data.bl_rna.properties, name
+        self.drawn.append(name)
+
+    def label(self, text="", **_):
+        self.drawn.append(text)
+
+    def operator(self, name, **_):
+        self.drawn.append(name)
+
+
+def drawn_panel():
+    drawn = []
+    ui.draw_panel(RecordingLayout(drawn), bpy.context)
+    return drawn
+
+
+def test_panel_shows_quality_and_summary():
+    settings = bpy.context.scene.radiosity
+    settings.quality = "MEDIUM"
+    drawn = drawn_panel()
+    assert "quality" in drawn and "memory_budget" in drawn and "element_size" not in drawn, drawn
+    assert "Elements 1/32 of the scene, resolution 128, tolerance 0.0001" in drawn, drawn
+    settings.quality = "CUSTOM"
+    drawn = drawn_panel()
+    for name in ("method", "element_size", "hemicube_resolution", "tolerance", "max_iterations"):
+        assert name in drawn, (name, drawn)
+    # After a bake (test_summary_on_the_furnace) the summary's parts are one line each.
+    assert settings.last_report in drawn and settings.last_accuracy, drawn
+    for part in settings.last_accuracy.split("; "):
+        assert part in drawn, (part, drawn)
+
+
 def test_summary_on_the_furnace():
     rho, emitted = 0.5, 1.0
     scenes.clear_scene()
@@ -141,4 +185,5 @@ def test_summary_on_the_furnace():
     assert "at most %.2g%% (solve)" % (100 * estimate["solve_bound"]) in report, report
 
 
-harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace)
+harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
+            test_panel_shows_quality_and_summary)
