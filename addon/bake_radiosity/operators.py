@@ -13,31 +13,31 @@ _running = None  # the operator instance baking now; one bake at a time
 
 
 class _Worker:
-    """Runs the solve off the main thread. The progress callback only stores and answers."""
+    """Runs the solve off the main thread. The core reports into a ProgressMonitor, which the
+    modal timer polls: a Python callback would need the GIL, which Blender's main thread holds
+    most of the time, and would stall the core at every report."""
 
     def __init__(self, job, want_layout):
         self.job = job
         self.want_layout = want_layout
         self.layout = None
-        self.latest = None
-        self.cancel_requested = False
+        self.monitor = native.core().ProgressMonitor()
         self.cancelled = False
         self.error = None
         self.done = False
         self.thread = threading.Thread(target=self._run, name="Bake Radiosity", daemon=True)
 
-    def _progress(self, info):
-        self.latest = info
-        return not self.cancel_requested
+    def cancel(self):
+        self.monitor.cancel()
 
     def _run(self):
         core = native.core()
         try:
             if self.want_layout:
                 self.layout = self.job.element_layout()
-            if not self.cancel_requested:
-                self.job.solve(progress=self._progress)
-            self.cancelled = self.cancel_requested
+            if not self.monitor.cancelled:
+                self.job.solve(progress=self.monitor)
+            self.cancelled = self.monitor.cancelled
         except core.Cancelled:
             self.cancelled = True
         except Exception as error:  # reported to the artist in the main thread
@@ -94,7 +94,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
     def modal(self, context, event):
         worker = self._worker
         if event.type == "ESC" and event.value == "PRESS":
-            worker.cancel_requested = True
+            worker.cancel()
             self._set_status(context, "Bake Radiosity: cancelling...")
             return {"RUNNING_MODAL"}
         if event.type != "TIMER":
@@ -106,17 +106,19 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
 
     def cancel(self, context):
         # Blender ends the operator (e.g. a file is loaded): stop the core and drop its result.
-        self._worker.cancel_requested = True
+        self._worker.cancel()
         self._worker.thread.join()
         self._cleanup(context)
 
     def _show_progress(self, context):
-        info = self._worker.latest
+        if self._worker.monitor.cancelled:
+            return  # keep saying "cancelling..." until the core stops
+        info = self._worker.monitor.snapshot()
         if self._worker.layout is not None and self._overlay is None:
             self._overlay = overlay.ProgressOverlay(*self._worker.layout)
         if info is None:
             return
-        self._set_status(context, pipeline.progress_text(info) + " - Esc to cancel")
+        self._set_status(context, pipeline.progress_text(info, self._worker.job.choice.tolerance) + " - Esc to cancel")
         if self._overlay is not None and info.get("radiance") is not None:
             self._overlay.show(info["radiance"])
 
@@ -183,7 +185,7 @@ def register():
 def unregister():
     global _running
     if _running is not None:
-        _running._worker.cancel_requested = True
+        _running._worker.cancel()
         _running._worker.thread.join()
         _running = None
     for cls in reversed(CLASSES):

@@ -91,7 +91,8 @@ class BakeJob:
             e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
             element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
             max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-            lights=e.lights, matrix_budget_bytes=c.budget_bytes, progress=progress)
+            lights=e.lights, matrix_budget_bytes=c.budget_bytes, progress=progress,
+            ambient=method == "progressive")  # brightens only the preview, never the result
 
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
@@ -171,7 +172,8 @@ def view_layer_and_depsgraph(scene):
 class ProgressPrinter:
     """Prints a progress line at most every `interval` seconds (for -b and the command line)."""
 
-    def __init__(self, interval=1.0):
+    def __init__(self, tolerance, interval=1.0):
+        self.tolerance = tolerance
         self.interval = interval
         self.last = -math.inf
 
@@ -179,16 +181,19 @@ class ProgressPrinter:
         now = time.perf_counter()
         if now - self.last >= self.interval or info["done"] == info["total"]:
             self.last = now
-            print(progress_text(info), flush=True)
+            print(progress_text(info, self.tolerance), flush=True)
         return True
 
 
-def progress_text(info):
-    phase = {"form_factors": "form factors", "solve": "solving"}.get(info["phase"], info["phase"])
-    text = "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
+def progress_text(info, tolerance):
+    """One status line. The solve's share is how far the residual has come on a log scale
+    from 1 to the tolerance: iteration counts are only caps."""
     if info["phase"] == "solve":
-        text += ", residual %.2e" % info["residual"]
-    return text
+        residual = max(info["residual"], 1e-300)
+        share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
+        return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
+    phase = {"form_factors": "form factors", "lights": "lamps"}.get(info["phase"], info["phase"])
+    return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 
 def bake(scene, **overrides):
@@ -203,5 +208,5 @@ def bake(scene, **overrides):
     """
     view_layer, depsgraph = view_layer_and_depsgraph(scene)
     job = BakeJob(scene, depsgraph, view_layer, overrides)
-    job.solve(progress=ProgressPrinter() if bpy.app.background else None)
+    job.solve(progress=ProgressPrinter(job.choice.tolerance) if bpy.app.background else None)
     return job.write(scene)
