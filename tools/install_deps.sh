@@ -7,7 +7,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy
   libglm-dev libtbb-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb
   googletest libgtest-dev libbenchmark-dev
-  blender xvfb xauth
+  blender xvfb xauth xdotool
 )
 missing=()
 for p in "${packages[@]}"; do
