@@ -5,7 +5,8 @@
 
 Writes baking.png (an interactive progressive
 bake under way: status bar and the brightening viewport), baked.png (the finished bake in
-the preview shading), then quits. Needs the add-on enabled in the profile it runs with."""
+the preview shading), panel.png (Properties > Render maximized, the Radiosity panel with the
+bake's summary; run with a tall screen, e.g. 1000x1800, to see all of it), then quits. Needs the add-on enabled in the profile it runs with."""
 
 import os
 import sys
@@ -65,6 +66,19 @@ script = [
 ]
 
 
+def maximize_properties():
+    window = bpy.context.window_manager.windows[0]
+    properties = next(a for a in window.screen.areas if a.type == "PROPERTIES")
+    with bpy.context.temp_override(window=window, area=properties):
+        bpy.ops.screen.screen_full_area()
+
+
+def finish():
+    shoot("baked.png")
+    maximize_properties()
+    bpy.app.timers.register(lambda: (shoot("panel.png"), bpy.ops.wm.quit_blender())[0], first_interval=1.0)
+
+
 def run_script():
     if script:
         delay, step = script.pop(0)
@@ -72,7 +86,7 @@ def run_script():
         return delay if script else 0.5
     if bpy.context.scene.radiosity.last_report:
         preview()
-        bpy.app.timers.register(lambda: (shoot("baked.png"), bpy.ops.wm.quit_blender())[0], first_interval=1.0)
+        bpy.app.timers.register(finish, first_interval=1.0)
         return None
     return 0.5
 
