@@ -28,18 +28,8 @@ EMITTER_MATERIAL = 3
 
 
 def cycles_bake(obj, seed):
+    harness.use_unbiased_cycles(SAMPLES_PER_HALF, seed)
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    cycles = scene.cycles
-    cycles.device = "CPU"
-    cycles.samples = SAMPLES_PER_HALF
-    cycles.seed = seed
-    cycles.use_adaptive_sampling = False
-    cycles.use_denoising = False
-    cycles.max_bounces = cycles.diffuse_bounces = 128
-    cycles.glossy_bounces = cycles.transmission_bounces = cycles.volume_bounces = 0
-    cycles.transparent_max_bounces = 0
-    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
     scene.render.bake.target = "VERTEX_COLORS"
     name = "Cycles %d" % seed
     attributes = obj.data.color_attributes

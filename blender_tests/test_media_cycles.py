@@ -23,20 +23,10 @@ ELEMENT_SIZE = 0.0625
 
 
 def render(seed):
-    scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    cycles = scene.cycles
-    cycles.device = "CPU"
-    cycles.samples = SAMPLES
-    cycles.seed = seed
-    cycles.use_adaptive_sampling = False
-    cycles.use_denoising = False
-    cycles.max_bounces = cycles.diffuse_bounces = cycles.volume_bounces = 64
-    cycles.glossy_bounces = cycles.transmission_bounces = 0
     # A medium's boundary is a transparent hit for shadow rays: with 0 transparent bounces Cycles
     # stops the lamp's light at the fog's surface and the original fog renders 3 to 4x too dark.
-    cycles.transparent_max_bounces = 64
-    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
+    harness.use_unbiased_cycles(SAMPLES, seed, bounces=64, volume_bounces=64, transparent_bounces=64)
+    scene = bpy.context.scene
     scene.render.resolution_x = scene.render.resolution_y = SIZE
     scene.render.resolution_percentage = 100
     scene.render.filepath = os.path.join(args.work, "render_%d.exr" % seed)

@@ -29,6 +29,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "blender_tests"))
+import harness  # noqa: E402
 import scenes  # noqa: E402
 
 CYCLES_SAMPLES = (1, 4, 16, 64, 256, 1024, 4096)
@@ -85,18 +86,8 @@ def kept_corners(mesh, skip_material):
 
 
 def setup_cycles(samples, seed):
+    harness.use_unbiased_cycles(samples, seed)
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    cycles = scene.cycles
-    cycles.device = "CPU"
-    cycles.samples = samples
-    cycles.seed = seed
-    cycles.use_adaptive_sampling = False
-    cycles.use_denoising = False
-    cycles.max_bounces = cycles.diffuse_bounces = 128
-    cycles.glossy_bounces = cycles.transmission_bounces = cycles.volume_bounces = 0
-    cycles.transparent_max_bounces = 0
-    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
     scene.render.bake.target = "VERTEX_COLORS"
 
 
