@@ -4,6 +4,8 @@
 #include "radiosity/shooting.h"
 #include "radiosity/solver.h"
 
+#include "dense_solve.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +14,8 @@
 
 namespace radiosity {
 namespace {
+
+using test::max_relative_error;
 
 /// Rows of a matrix held as one SparseRow per element (the test's own StoredRows).
 class MatrixRows final : public RowSource {
@@ -69,45 +73,16 @@ System random_enclosure(int n, double row_sum_lo, double row_sum_hi, bool self, 
     return s;
 }
 
-/// The independent truth: (I - rho F) L = E per channel, Gaussian elimination with partial pivoting.
-std::vector<Rgb> direct_solve(const Elements& e, const MatrixRows& rows) {
-    const int n = static_cast<int>(e.size());
-    std::vector<Rgb> L(n);
-    for (int c = 0; c < 3; ++c) {
-        std::vector<std::vector<double>> M(n, std::vector<double>(n + 1, 0.0));
-        for (int i = 0; i < n; ++i) {
-            for (int j = 0; j < n; ++j) M[i][j] = (i == j ? 1.0 : 0.0) - e.reflectance[i][c] * rows.at(i, j);
-            M[i][n] = e.emission[i][c];
-        }
-        for (int k = 0; k < n; ++k) {
-            int pivot = k;
-            for (int i = k + 1; i < n; ++i)
-                if (std::abs(M[i][k]) > std::abs(M[pivot][k])) pivot = i;
-            std::swap(M[k], M[pivot]);
-            for (int i = k + 1; i < n; ++i) {
-                const double m = M[i][k] / M[k][k];
-                for (int j = k; j <= n; ++j) M[i][j] -= m * M[k][j];
-            }
-        }
-        for (int i = n - 1; i >= 0; --i) {
-            double x = M[i][n];
-            for (int j = i + 1; j < n; ++j) x -= M[i][j] * L[j][c];
-            L[i][c] = x / M[i][i];
-        }
-    }
-    return L;
+/// The rows as a dense matrix, for the direct solve.
+test::DenseMatrix dense(const Elements& e, const MatrixRows& rows) {
+    const auto n = static_cast<int32_t>(e.size());
+    test::DenseMatrix F(n, std::vector<double>(n, 0.0));
+    for (int32_t i = 0; i < n; ++i)
+        for (int32_t j = 0; j < n; ++j) F[i][j] = rows.at(i, j);
+    return F;
 }
 
-/// max_i,c |a - b| / max_i,c |b|
-double max_relative_error(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
-    double err = 0.0, scale = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            err = std::max(err, std::abs(a[i][c] - b[i][c]));
-            scale = std::max(scale, std::abs(b[i][c]));
-        }
-    return err / scale;
-}
+std::vector<Rgb> direct_solve(const Elements& e, const MatrixRows& rows) { return test::direct_solve(e, dense(e, rows)); }
 
 bool all_finite(const std::vector<Rgb>& v) {
     for (const Rgb& x : v)
