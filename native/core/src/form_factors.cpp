@@ -3,13 +3,9 @@
 
 #include "radiosity/form_factors.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
+#include "parallel_rows.h"
 
-#include <algorithm>
-#include <atomic>
-#include <mutex>
+#include <tbb/enumerable_thread_specific.h>
 
 namespace radiosity {
 
@@ -25,37 +21,10 @@ SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& s
     tbb::enumerable_thread_specific<RowRenderer> renderers([&] { return RowRenderer(weights, settings); });
     std::vector<SparseRow> rows(n);
 
-    std::atomic<std::size_t> done{0};
-    std::atomic<bool> cancelled{false};
-    std::mutex report;
-    const std::size_t step = std::max<std::size_t>(1, (n + 99) / 100);  // about every 1%
-    auto tell = [&](std::size_t finished) {
-        if (!progress) return;
-        std::lock_guard<std::mutex> lock(report);
-        Progress p;
-        p.phase = "form_factors";
-        p.done = finished;
-        p.total = n;
-        p.element_count = n;
-        if (!progress(p)) cancelled = true;
-    };
-
-    tbb::task_group_context context;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& range) {
-        RowRenderer& renderer = renderers.local();
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            if (cancelled) {
-                context.cancel_group_execution();
-                return;
-            }
-            renderer.row(elements, static_cast<int32_t>(i), rows[i]);
-            const std::size_t finished = ++done;
-            if (finished % step == 0 && finished != n) tell(finished);
-        }
-    }, context);
-    if (!cancelled) tell(n);
-    // The callback may run on a worker thread; Cancelled is thrown here, on the caller's.
-    if (cancelled) throw Cancelled();
+    detail::parallel_rows(n, 16, n, progress, [&](std::size_t i) {
+        renderers.local().row(elements, static_cast<int32_t>(i), rows[i]);
+        return true;
+    });
 
     SparseMatrix matrix;
     matrix.row_start.resize(n + 1);

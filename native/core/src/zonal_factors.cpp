@@ -2,14 +2,14 @@
 /// @brief Exchange-factor rows: item buffers for the surfaces, a transmittance walk per cell.
 #include "radiosity/zonal.h"
 
+#include "parallel_rows.h"
+
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <mutex>
 
 namespace radiosity {
 namespace {
@@ -101,37 +101,12 @@ ZonalMatrix compute_exchange_factors(const Elements& elements, const std::vector
     tbb::enumerable_thread_specific<ZonalRowRenderer> renderers(
         [&] { return ZonalRowRenderer(elements, zones, tracer, settings); });
     std::vector<ZonalRow> rows(unknowns);
-    std::atomic<std::size_t> done{0}, bytes{unknowns * sizeof(int64_t)};
-    std::atomic<bool> cancelled{false}, over_budget{false};
-    std::mutex report;
-    const std::size_t step = std::max<std::size_t>(1, (unknowns + 99) / 100);
-    auto tell = [&](std::size_t finished) {
-        if (!progress) return;
-        std::lock_guard<std::mutex> lock(report);
-        Progress p;
-        p.phase = "form_factors";
-        p.done = finished;
-        p.total = unknowns;
-        p.element_count = elements.size();
-        if (!progress(p)) cancelled = true;
-    };
-    tbb::task_group_context context;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unknowns, 4), [&](const tbb::blocked_range<std::size_t>& range) {
-        ZonalRowRenderer& renderer = renderers.local();
-        for (std::size_t x = range.begin(); x != range.end(); ++x) {
-            if (cancelled || over_budget) {
-                context.cancel_group_execution();
-                return;
-            }
-            renderer.row(static_cast<int32_t>(x), rows[x]);
-            if ((bytes += rows[x].col.size() * bytes_per_nonzero) > settings.budget_bytes) over_budget = true;
-            const std::size_t finished = ++done;
-            if (finished % step == 0 && finished != unknowns) tell(finished);
-        }
-    }, context);
-    if (!cancelled && !over_budget) tell(unknowns);
-    if (cancelled) throw Cancelled();
-    if (over_budget)
+    std::atomic<std::size_t> bytes{unknowns * sizeof(int64_t)};
+    const bool within_budget = detail::parallel_rows(unknowns, 4, elements.size(), progress, [&](std::size_t x) {
+        renderers.local().row(static_cast<int32_t>(x), rows[x]);
+        return (bytes += rows[x].col.size() * bytes_per_nonzero) <= settings.budget_bytes;
+    });
+    if (!within_budget)
         throw InputError("exchange factors of " + std::to_string(elements.size()) + " elements and " +
                          std::to_string(zones.size()) + " zones exceed the memory budget of " +
                          std::to_string(settings.budget_bytes >> 20) +
