@@ -2,6 +2,7 @@
 operator and the command line; and the bake's summary (residual, energy balance, error estimate)
 against the furnace's exact answer."""
 
+import contextlib
 import math
 import os
 import subprocess
@@ -18,6 +19,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
+auto_settings = sys.modules[harness.MODULE + ".auto_settings"]
 ui = sys.modules[harness.MODULE + ".ui"]
 
 # The presets as the user guide documents them: (element size as a fraction of the scene's size,
@@ -154,8 +156,10 @@ def test_summary_on_the_furnace():
     settings.element_size, settings.hemicube_resolution, settings.method = 0.125, 64, "GAUSS_SEIDEL"
     # A loose tolerance, so that the solve's error is large enough to compare with its bound.
     settings.tolerance = 1e-2
-    job = job_for(bpy.context.scene)
-    radiance = job.solve()["element_radiance"]
+    # Plain Gauss-Seidel, whose residual keeps its sign (below); over-relaxation overshoots.
+    with patched("AUTOMATIC_OVER_RELAXATION", 1.0):
+        job = job_for(bpy.context.scene)
+        radiance = job.solve()["element_radiance"]
     summary = job.write(bpy.context.scene)
     power, estimate = summary["energy"], summary["error_estimate"]
     # A Lambertian surface of radiance L and area A sends pi L A watts; the box's area is 6.
@@ -185,5 +189,64 @@ def test_summary_on_the_furnace():
     assert "at most %.2g%% (solve)" % (100 * estimate["solve_bound"]) in report, report
 
 
+@contextlib.contextmanager
+def patched(name, value):
+    """auto_settings.<name> set to `value` inside the block."""
+    kept = getattr(auto_settings, name)
+    setattr(auto_settings, name, value)
+    try:
+        yield
+    finally:
+        setattr(auto_settings, name, kept)
+
+
+def test_over_relaxation_near_rho_one():
+    # Draft, as an artist would bake a bright white room: the core's automatic omega against plain
+    # Gauss-Seidel (over_relaxation 1), same tolerance, same answer.
+    rho, emitted = 0.95, 1.0
+    scenes.clear_scene()
+    box = scenes.furnace_box(rho, emitted, cells=4)
+    bpy.context.scene.radiosity.quality = "DRAFT"
+    with patched("AUTOMATIC_OVER_RELAXATION", 1.0):
+        plain = addon.bake(bpy.context.scene)
+    plain_colors = harness.corner_colors(box.data, "Radiosity")
+    sor = addon.bake(bpy.context.scene)
+    sor_colors = harness.corner_colors(box.data, "Radiosity")
+    exact = emitted / (1 - rho)
+    # The solve's bound is on the mean (area-weighted) error; the corners of this grid weigh alike.
+    plain_error, sor_error = (np.abs(c / exact - 1).mean() for c in (plain_colors, sor_colors))
+    bounds = plain["error_estimate"]["solve_bound"], sor["error_estimate"]["solve_bound"]
+    print("furnace rho %.2f, Draft, %d elements: Gauss-Seidel %d sweeps (%.3f s, mean corner error %.2e, "
+          "bound %.2e), over-relaxed %d sweeps (%.3f s, %.2e, bound %.2e)" % (
+              rho, sor["elements"], plain["iterations"], plain["seconds"]["solve"], plain_error, bounds[0],
+              sor["iterations"], sor["seconds"]["solve"], sor_error, bounds[1]))
+    assert plain["method"] == sor["method"] == "gauss_seidel" and plain["converged"] and sor["converged"]
+    assert sor["iterations"] < plain["iterations"] / 2, (sor["iterations"], plain["iterations"])
+    # Both within their own solve bound of the exact answer, so within the two bounds of each other.
+    assert plain_error <= bounds[0] and sor_error <= bounds[1], (plain_error, sor_error, bounds)
+    assert np.abs(sor_colors - plain_colors).mean() / exact <= sum(bounds)
+
+
+def test_thin_quads_are_cut():
+    # A strip 1 m long and 2 mm wide under an emitting square: Draft's elements (1/16 of the
+    # scene's size, 2.6 cm) would be 13 times longer than wide there; cut to at most 4.
+    width = 0.002
+    width_float32 = float(np.float32(0.5 + width) - np.float32(0.5))  # as the core measures it
+    scenes.clear_scene()
+    scenes.mesh_object("Sliver", [
+        scenes.grid((0, 0, 1), (0, 1, 0), (1, 0, 0), 1, 1) + (1,),        # emitter, facing down
+        scenes.grid((0, 0.5, 0), (1, 0, 0), (0, width, 0), 1, 1) + (0,),  # the strip, facing up
+    ], [scenes.diffuse("White", (0.8, 0.8, 0.8)), scenes.emission("Light", (1, 1, 1), 1.0)])
+    bpy.context.scene.radiosity.quality = "DRAFT"
+    with patched("MAX_ELEMENT_ASPECT", 0.0):
+        kept = addon.bake(bpy.context.scene)
+    cut = addon.bake(bpy.context.scene)
+    along = math.ceil(1 / cut["element_size"])  # the strip's elements along it, before the cut
+    print("sliver %.3f m wide, element size %.4f m: %d elements, %d with the aspect limit" % (
+        width, cut["element_size"], kept["elements"], cut["elements"]))
+    assert cut["elements"] - kept["elements"] == math.ceil(1 / (4 * width_float32)) - along, (kept, cut)
+    assert cut["converged"] and not cut["warnings"], cut
+
+
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
-            test_panel_shows_quality_and_summary)
+            test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one, test_thin_quads_are_cut)

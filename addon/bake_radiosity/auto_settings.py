@@ -9,6 +9,11 @@ from . import export, native
 
 CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive"}
 MEBIBYTE = 1 << 20
+# Stability mitigations of docs/stability.md, on for every quality: slivers are cut until no
+# element is longer than 4 times its width, and Gauss-Seidel over-relaxes with the core's
+# recommended omega (over_relaxation 0 = automatic), which pays off where reflectance is near 1.
+MAX_ELEMENT_ASPECT = 4.0
+AUTOMATIC_OVER_RELAXATION = 0.0
 
 
 @dataclass(frozen=True)
@@ -36,6 +41,14 @@ class Choice:
     scene_size: float
     matrix_bytes_bound: int     # the core's worst case for the stored matrix
     budget_bytes: int
+    max_element_aspect: float   # 0 = slivers kept (the zonal bake does not cut them)
+
+    def stability_keywords(self):
+        """The stability settings _core.bake takes for this choice."""
+        keywords = {"max_element_aspect": self.max_element_aspect}
+        if self.method == "gauss_seidel":
+            keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
+        return keywords
 
 
 def scene_size(exported):
@@ -46,8 +59,9 @@ def scene_size(exported):
     return math.sqrt(float(areas.sum()) / 6.0)
 
 
-def choose(settings, exported):
-    """The Choice for `settings` (pipeline.settings_of) on `exported`."""
+def choose(settings, exported, zonal=False):
+    """The Choice for `settings` (pipeline.settings_of) on `exported`; `zonal`: a bake with media,
+    whose core call takes no stability settings."""
     size = scene_size(exported)
     preset = PRESETS.get(settings["quality"])
     if preset is None:
@@ -58,9 +72,11 @@ def choose(settings, exported):
         element_size, resolution, tolerance = size / preset.divisions, preset.resolution, preset.tolerance
     resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
 
+    max_element_aspect = 0.0 if zonal else MAX_ELEMENT_ASPECT
     core = native.core()
     layout = core.elements(exported.positions, exported.face_offsets, exported.corner_vertices,
-                           exported.reflectance, exported.emission, exported.material, element_size=element_size)
+                           exported.reflectance, exported.emission, exported.material, element_size=element_size,
+                           max_element_aspect=max_element_aspect)
     elements = int(layout["elements"])
     bound = int(core.matrix_bytes_bound(elements, resolution))
     budget = int(settings["memory_budget"]) * MEBIBYTE
@@ -72,7 +88,8 @@ def choose(settings, exported):
         # row each sweep.
         method = "gauss_seidel" if bound <= budget else "progressive"
     return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance, method=method,
-                  elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget)
+                  elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
+                  max_element_aspect=max_element_aspect)
 
 
 def warnings_for(choice):

@@ -61,7 +61,7 @@ class BakeJob:
         if not self.exported.lights and not self.exported.emission.any() and not any(
                 m.grid["emission"].any() for m in self.media.media):
             self.warnings.append("The scene has no emitting material and no lamp: the bake will be black")
-        self.choice = auto_settings.choose(self.settings, self.exported)
+        self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
         self.warnings += auto_settings.warnings_for(self.choice)
         self.result = None
 
@@ -79,12 +79,13 @@ class BakeJob:
         """(element_vertices, element_corners) in the order progress reports radiance."""
         e = self.exported
         layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
-                                        e.emission, e.material, element_size=self.choice.element_size)
+                                        e.emission, e.material, element_size=self.choice.element_size,
+                                        max_element_aspect=self.choice.max_element_aspect)
         return layout["element_vertices"], layout["element_corners"]
 
     def _run_core(self, method, max_iterations, progress):
         e, c = self.exported, self.choice
-        bake = native.core().bake
+        bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
             bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media])
         return bake(

@@ -47,13 +47,15 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
 py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                         const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                         const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                        float element_size) {
+                        float element_size, float max_element_aspect) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
     if (!(element_size >= 0.0f)) throw py::value_error("element_size must be >= 0");
     BuildResult build;
     {
         py::gil_scoped_release release;
-        build = build_elements(input, element_size);
+        ElementLimits limits;
+        limits.max_aspect = max_element_aspect;
+        build = build_elements(input, element_size, limits);
     }
     py::dict out;
     add_elements(build, out);
@@ -76,7 +78,7 @@ void bind_bake(py::module_& m) {
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f);
+          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "max_element_aspect"_a = 0.0f);
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",

@@ -98,7 +98,22 @@ TEST(Convergence, NearFieldRowsStayAtOneSoRhoNearOneHolds) {
 TEST(Convergence, OverRelaxationOutsideItsRangeIsAnInputError) {
     const Furnace f(0.5);
     EXPECT_THROW(run(f, Method::GaussSeidel, 2.0), InputError);
-    EXPECT_THROW(run(f, Method::GaussSeidel, 0.0), InputError);
+    EXPECT_THROW(run(f, Method::GaussSeidel, -0.5), InputError);  // 0 means automatic
+}
+
+TEST(Convergence, ZeroOverRelaxationPicksTheRecommendedOmega) {
+    // What the add-on asks for: the same answer as plain Gauss-Seidel, in the sweeps of SOR with
+    // recommended_over_relaxation.
+    const Furnace f(0.9);
+    const SolveResult gs = run(f, Method::GaussSeidel, 1.0), automatic = run(f, Method::GaussSeidel, 0.0),
+                      sor = run(f, Method::GaussSeidel, recommended_over_relaxation(f.elements));
+    ASSERT_TRUE(gs.converged && automatic.converged);
+    std::printf("rho 0.90: Gauss-Seidel %d sweeps, over_relaxation 0 (automatic) %d\n", gs.iterations,
+                automatic.iterations);
+    EXPECT_EQ(automatic.iterations, sor.iterations);
+    EXPECT_LT(automatic.iterations, gs.iterations);
+    EXPECT_LT(f.worst_error(automatic.radiance), 1e-4);
+    for (std::size_t i = 0; i < gs.radiance.size(); ++i) EXPECT_NEAR(automatic.radiance[i].g, gs.radiance[i].g, 1e-5);
 }
 
 TEST(Convergence, PinholesAtBoxCornersAreFilledSoRowsSumToOne) {

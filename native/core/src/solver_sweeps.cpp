@@ -62,8 +62,11 @@ double jacobi_sweep(const Elements& elements, RowSource& rows, std::vector<Rgb>&
 SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveSettings& settings,
                          const ProgressFn& progress, double emitted) {
     const bool jacobi = settings.method == Method::Jacobi;
-    const double omega = settings.over_relaxation;
-    if (!(omega > 0.0 && omega < 2.0)) throw InputError("over_relaxation must be in (0, 2), got " + std::to_string(omega));
+    // 0 = automatic: the add-on asks for the core's measured omega rather than copying its formula.
+    const double omega =
+        settings.over_relaxation == 0.0 ? recommended_over_relaxation(elements) : settings.over_relaxation;
+    if (!(omega > 0.0 && omega < 2.0))
+        throw InputError("over_relaxation must be 0 (automatic) or in (0, 2), got " + std::to_string(omega));
     const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
     DivergenceGuard guard(jacobi ? "Jacobi" : "Gauss-Seidel");
 

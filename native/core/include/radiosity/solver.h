@@ -28,8 +28,8 @@ struct SolveSettings {
     int max_iterations = 1000;   ///< sweeps; for progressive refinement one sweep = n shots
     bool ambient = false;        ///< progressive: add the seed's ambient term to the reported preview
     /// Gauss-Seidel only: successive over-relaxation, L_i += omega (L_i^GS - L_i), omega in (0, 2).
-    /// 1 = plain Gauss-Seidel. Pays off where reflectance is near 1 (docs/stability.md:
-    /// recommended_over_relaxation gives the measured choice).
+    /// 1 = plain Gauss-Seidel; 0 = automatic, recommended_over_relaxation(elements), the measured
+    /// choice. Pays off where reflectance is near 1 (docs/stability.md).
     double over_relaxation = 1.0;
 };
 
