@@ -45,6 +45,43 @@ private:
     int sweeps_ = 0;
 };
 
+/// The sweep loop of the surface and zonal systems. `sweep(L, L_entry)` moves L^k into L_entry,
+/// leaves L^{k+1} in L and returns L^k's relative residual; `residual_of(L)` is L's relative
+/// residual (needed once, at the sweep cap). Stops below the tolerance or at max_iterations,
+/// returning the iterate whose residual it reports.
+template <typename Sweep, typename Residual>
+SolveResult iterate_sweeps(std::vector<Rgb> L, const SolveSettings& settings, const char* method,
+                           const ProgressFn& progress, std::size_t element_count, Sweep sweep, Residual residual_of) {
+    const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
+    DivergenceGuard guard(method);
+    SolveResult result;
+    std::vector<Rgb> L_entry(L.size());
+    for (std::size_t k = 0;; ++k) {  // L holds L^k here
+        if (k == cap) {
+            result.residual = residual_of(L);
+            guard.check(result.residual);
+            if (k > 0) result.residual_history.push_back(result.residual);
+            result.iterations = static_cast<int>(k);
+            result.converged = result.residual <= settings.tolerance;
+            break;
+        }
+        const double residual = sweep(L, L_entry);
+        guard.check(residual);
+        if (k > 0) result.residual_history.push_back(residual);
+        if (residual <= settings.tolerance) {
+            std::swap(L, L_entry);  // return L^k, whose residual this is
+            result.residual = residual;
+            result.iterations = static_cast<int>(k);
+            result.converged = true;
+            break;
+        }
+        // Reports L^{k+1} with the latest measured residual (that of L^k).
+        report(progress, k + 1, cap, residual, L, element_count);
+    }
+    result.radiance = std::move(L);
+    return result;
+}
+
 /// Gauss-Seidel (in place) or Jacobi (two buffers); `emitted` = emitted_norm(elements) > 0.
 SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveSettings& settings,
                          const ProgressFn& progress, double emitted);

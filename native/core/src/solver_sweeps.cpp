@@ -67,39 +67,15 @@ SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveS
         settings.over_relaxation == 0.0 ? recommended_over_relaxation(elements) : settings.over_relaxation;
     if (!(omega > 0.0 && omega < 2.0))
         throw InputError("over_relaxation must be 0 (automatic) or in (0, 2), got " + std::to_string(omega));
-    const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
-    DivergenceGuard guard(jacobi ? "Jacobi" : "Gauss-Seidel");
-
-    SolveResult result;
-    std::vector<Rgb> L = elements.emission;  // the seed's start: B = E
-    std::vector<Rgb> L_entry(L.size());
     SparseRow row;
-    for (std::size_t k = 0;; ++k) {  // L holds L^k here
-        if (k == cap) {
-            result.residual = relative_residual(elements, rows, L);
-            guard.check(result.residual);
-            if (k > 0) result.residual_history.push_back(result.residual);
-            result.iterations = static_cast<int>(k);
-            result.converged = result.residual <= settings.tolerance;
-            break;
-        }
-        const double residual =
-            (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row) : gauss_seidel_sweep(elements, rows, L, L_entry, row, omega)) /
-            emitted;
-        guard.check(residual);
-        if (k > 0) result.residual_history.push_back(residual);
-        if (residual <= settings.tolerance) {
-            std::swap(L, L_entry);  // return L^k, whose residual this is
-            result.residual = residual;
-            result.iterations = static_cast<int>(k);
-            result.converged = true;
-            break;
-        }
-        // Reports L^{k+1} with the latest measured residual (that of L^k).
-        report(progress, k + 1, cap, residual, L, L.size());
-    }
-    result.radiance = std::move(L);
-    return result;
+    return iterate_sweeps(
+        elements.emission /* the seed's start: B = E */, settings, jacobi ? "Jacobi" : "Gauss-Seidel", progress,
+        elements.size(),
+        [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) {
+            return (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row)
+                           : gauss_seidel_sweep(elements, rows, L, L_entry, row, omega)) / emitted;
+        },
+        [&](const std::vector<Rgb>& L) { return relative_residual(elements, rows, L); });
 }
 
 }  // namespace radiosity::detail

@@ -40,37 +40,15 @@ double sweep(const Terms& t, const ZonalMatrix& R, bool jacobi, std::vector<Rgb>
 SolveResult solve_sweeps(const Terms& t, const ZonalMatrix& R, const SolveSettings& settings,
                          const ProgressFn& progress, std::size_t element_count) {
     const bool jacobi = settings.method == Method::Jacobi;
-    const auto cap = static_cast<std::size_t>(std::max(settings.max_iterations, 0));
     const double emitted = t.emitted_norm();
-    detail::DivergenceGuard guard(jacobi ? "Jacobi" : "Gauss-Seidel");
-
-    SolveResult result;
-    std::vector<Rgb> L = t.E, L_entry(t.size());
-    for (std::size_t k = 0;; ++k) {  // L holds L^k here
-        if (k == cap) {
+    return detail::iterate_sweeps(
+        t.E, settings, jacobi ? "Jacobi" : "Gauss-Seidel", progress, element_count,
+        [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) { return sweep(t, R, jacobi, L, L_entry) / emitted; },
+        [&](const std::vector<Rgb>& L) {
             double residual = 0.0;
             for (std::size_t x = 0; x < t.size(); ++x) residual += row_residual(t, x, gather(R, x, L), L[x]);
-            result.residual = residual / emitted;
-            guard.check(result.residual);
-            if (k > 0) result.residual_history.push_back(result.residual);
-            result.iterations = static_cast<int>(k);
-            result.converged = result.residual <= settings.tolerance;
-            break;
-        }
-        const double residual = sweep(t, R, jacobi, L, L_entry) / emitted;
-        guard.check(residual);
-        if (k > 0) result.residual_history.push_back(residual);
-        if (residual <= settings.tolerance) {
-            std::swap(L, L_entry);  // return L^k, whose residual this is
-            result.residual = residual;
-            result.iterations = static_cast<int>(k);
-            result.converged = true;
-            break;
-        }
-        detail::report(progress, k + 1, cap, residual, L, element_count);
-    }
-    result.radiance = std::move(L);
-    return result;
+            return residual / emitted;
+        });
 }
 
 }  // namespace radiosity::zonal_detail
