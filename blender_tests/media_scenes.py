@@ -51,13 +51,7 @@ def fog_box_scene(work):
     lamp_object.location = (0.5, 0.5, 1.0)  # in the opening, facing down (-Z)
     lamp_object.visible_camera = False  # the baked scene shows the opening, not the lamp
     bpy.context.scene.collection.objects.link(lamp_object)
-    camera = bpy.data.cameras.new("Camera")
-    camera.lens = 24.0
-    camera_object = bpy.data.objects.new("Camera", camera)
-    camera_object.location = (0.5, -1.0, 0.5)
-    camera_object.rotation_euler = (np.pi / 2, 0.0, 0.0)
-    bpy.context.scene.collection.objects.link(camera_object)
-    bpy.context.scene.camera = camera_object
+    scenes.camera_looking_along_y((0.5, -1.0, 0.5), 24.0)
     settings = bpy.context.scene.radiosity
     settings.zone_size = ZONE
     settings.media_folder = work + "/"

@@ -199,12 +199,17 @@ def _block(xy0, xy1, height, cell):
     ]
 
 
-def camera_for_cornell_box():
+def camera_looking_along_y(location, lens):
+    """The scene's camera at `location`, looking along +Y (into a box open at -Y)."""
     camera = bpy.data.cameras.new("Camera")
-    camera.lens = 35.0
+    camera.lens = lens
     obj = bpy.data.objects.new("Camera", camera)
-    obj.location = (0.5, -1.02, 0.5)
+    obj.location = location
     obj.rotation_euler = (math.pi / 2, 0.0, 0.0)
     bpy.context.scene.collection.objects.link(obj)
     bpy.context.scene.camera = obj
     return obj
+
+
+def camera_for_cornell_box():
+    return camera_looking_along_y((0.5, -1.02, 0.5), 35.0)
