@@ -2,7 +2,9 @@
 /// @brief Element radiances to corner colours (seed 23.5), per element corner ("slot").
 ///
 /// A slot (element e, corner k) sits on a welded vertex w. Its compatible set S is the elements at
-/// w whose normals differ from e's by at most the hard-edge angle and whose material is e's. The
+/// w whose normals differ from e's by at most the hard-edge angle and whose material is e's; where
+/// an intersection line (Elements::cut_edges) passes w, only those of them that reach e around w
+/// through edges not on the line (the dark side of a wall through a floor is not blended in). The
 /// slot is on a border when some edge at w is used by only one element of S (open boundary, hard
 /// edge, material change); otherwise it is interior. Then:
 ///  1. interior slot: the mean radiance of S (seed: B(e) = (B1 + B2 + B3 + B4) / 4);
@@ -26,6 +28,7 @@
 #include <glm/vec2.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace radiosity {
@@ -47,6 +50,7 @@ public:
         std::vector<int32_t> fill(start.begin(), start.end() - 1);
         for (std::size_t e = 0; e < size(); ++e)
             for (int k = 0; k < corner_count(e); ++k) incident[fill[weld(e, k)]++] = slot(e, k);
+        mark_cut_welds(welds);
         // Compatible set and border flag of every slot.
         set_start_.assign(4 * size() + 1, 0);
         border_.assign(4 * size(), false);
@@ -55,8 +59,10 @@ public:
                 const int32_t s = slot(e, k);
                 if (k < corner_count(e)) {
                     const int32_t w = weld(e, k);
+                    const std::size_t set_begin = set_.size();
                     for (int32_t t = start[w]; t < start[w + 1]; ++t)
                         if (compatible(e, element_of(incident[t]))) set_.push_back(incident[t]);
+                    if (cut_weld_[w]) keep_reachable(s, set_begin);
                 }
                 set_start_[s + 1] = static_cast<int32_t>(set_.size());
                 if (k < corner_count(e)) border_[s] = has_single_edge(s);
@@ -91,6 +97,49 @@ public:
     }
 
 private:
+    /// An element's two edges at a slot's vertex: far-end weld and whether it lies on a cut.
+    struct EdgeAt {
+        int32_t far;
+        bool cut;
+    };
+    std::array<EdgeAt, 2> edges_at(int32_t s) const {
+        const std::size_t f = element_of(s);
+        const int m = corner_count(f), k = corner_of(s), before = (k + m - 1) % m;
+        const unsigned bits = elements_.cut_edges.empty() ? 0u : elements_.cut_edges[f];
+        return {{{weld(f, (k + 1) % m), ((bits >> k) & 1u) != 0}, {weld(f, before), ((bits >> before) & 1u) != 0}}};
+    }
+
+    void mark_cut_welds(std::size_t welds) {
+        cut_weld_.assign(welds, false);
+        if (elements_.cut_edges.empty()) return;
+        for (std::size_t e = 0; e < size(); ++e)
+            for (int k = 0; k < corner_count(e); ++k)
+                if ((elements_.cut_edges[e] >> k) & 1u) cut_weld_[weld(e, k)] = cut_weld_[weld(e, (k + 1) % corner_count(e))] = true;
+    }
+
+    /// Keeps, of set_[begin, end), the slots whose elements reach slot s's element by stepping
+    /// between elements that share an edge at the vertex, none on a cut; in their order.
+    void keep_reachable(int32_t s, std::size_t begin) {
+        const std::vector<int32_t> candidates(set_.begin() + static_cast<std::ptrdiff_t>(begin), set_.end());
+        std::vector<char> reached(candidates.size(), 0);
+        for (std::size_t i = 0; i < candidates.size(); ++i) reached[i] = candidates[i] == s;
+        auto joined = [&](int32_t a, int32_t b) {
+            for (const EdgeAt& x : edges_at(a))
+                for (const EdgeAt& y : edges_at(b))
+                    if (x.far == y.far && !x.cut && !y.cut) return true;
+            return false;
+        };
+        for (bool grew = true; grew;) {
+            grew = false;
+            for (std::size_t i = 0; i < candidates.size(); ++i)
+                for (std::size_t j = 0; j < candidates.size() && !reached[i]; ++j)
+                    if (reached[j] && joined(candidates[i], candidates[j])) reached[i] = grew = true;
+        }
+        set_.resize(begin);
+        for (std::size_t i = 0; i < candidates.size(); ++i)
+            if (reached[i]) set_.push_back(candidates[i]);
+    }
+
     bool compatible(std::size_t e, std::size_t f) const {
         if (glm::dot(elements_.normal[e], elements_.normal[f]) < cos_hard_) return false;
         return material_ == nullptr || material_[elements_.polygon[e]] == material_[elements_.polygon[f]];
@@ -102,6 +151,7 @@ private:
     std::vector<int32_t> weld_;
     std::vector<int32_t> set_start_, set_;
     std::vector<bool> border_;
+    std::vector<bool> cut_weld_;  ///< welds at the end of a cut edge
 };
 
 Rgb mean_radiance(const Slots& slots, int32_t s, const std::vector<Rgb>& radiance) {

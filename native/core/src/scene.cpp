@@ -1,10 +1,15 @@
 /// @file scene.cpp
-/// @brief build_elements: validates the input arrays, splits n-gons and subdivides polygons into elements.
+/// @brief build_elements: validates the input arrays, cuts polygons along intersections, splits n-gons and
+/// subdivides polygons into elements.
 ///
 /// Corner indices out of range are a defect of one polygon, not of the arrays as a whole: such a
 /// polygon is skipped and reported as Defect::BadIndex, like a degenerate one.
 
 #include "radiosity/scene.h"
+
+#include "intersection_cut.h"
+#include "intersection_find.h"
+#include "polygon_geometry.h"
 
 #include <glm/geometric.hpp>
 
@@ -12,13 +17,14 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
 namespace radiosity {
 namespace {
 
-using DVec3 = glm::dvec3;
+using detail::DVec3;
 
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
     throw InputError("polygon " + std::to_string(polygon) + ": " + what);
@@ -56,46 +62,6 @@ void limit_aspect(double length_u, double length_v, float max_aspect, double& nu
     const double du = length_u / nu, dv = length_v / nv;
     if (du > max_aspect * dv) nu = std::ceil(length_u / (max_aspect * dv) * (1.0 - 1e-6));
     if (dv > max_aspect * du) nv = std::ceil(length_v / (max_aspect * du) * (1.0 - 1e-6));
-}
-
-/// Twice the area vector of a polygon (Newell's method): its direction is the normal.
-DVec3 newell(const std::vector<DVec3>& p) {
-    DVec3 n(0.0);
-    for (std::size_t i = 0; i < p.size(); ++i) n += glm::cross(p[i], p[(i + 1) % p.size()]);
-    return n;
-}
-
-/// Ear clipping in the polygon's plane; handles concave simple polygons. Triangles are CCW about `normal`.
-std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const DVec3& normal) {
-    std::vector<int> ring(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) ring[i] = static_cast<int>(i);
-    auto convex = [&](int a, int b, int c) { return glm::dot(glm::cross(p[b] - p[a], p[c] - p[b]), normal) > 0.0; };
-    auto inside = [&](int q, int a, int b, int c) {
-        return glm::dot(glm::cross(p[b] - p[a], p[q] - p[a]), normal) >= 0.0 &&
-               glm::dot(glm::cross(p[c] - p[b], p[q] - p[b]), normal) >= 0.0 &&
-               glm::dot(glm::cross(p[a] - p[c], p[q] - p[c]), normal) >= 0.0;
-    };
-    std::vector<std::array<int, 3>> triangles;
-    while (ring.size() > 3) {
-        const std::size_t m = ring.size();
-        std::size_t ear = m;
-        for (std::size_t i = 0; i < m && ear == m; ++i) {
-            const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
-            if (!convex(a, b, c)) continue;
-            bool empty = true;
-            for (int q : ring)
-                if (q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && inside(q, a, b, c)) {
-                    empty = false;
-                    break;
-                }
-            if (empty) ear = i;
-        }
-        if (ear == m) ear = 0;  // self-intersecting outline: no true ear exists, cut any corner
-        triangles.push_back({ring[(ear + m - 1) % m], ring[ear], ring[(ear + 1) % m]});
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ear));
-    }
-    triangles.push_back({ring[0], ring[1], ring[2]});
-    return triangles;
 }
 
 /// Builds the elements of one polygon. Vertices on a polygon edge or diagonal are shared by
@@ -204,6 +170,7 @@ private:
         out_.polygon.push_back(polygon_);
         out_.reflectance.push_back(rho_);
         out_.emission.push_back(emitted_);
+        out_.cut_edges.push_back(0);
     }
 
     Elements& out_;
@@ -214,14 +181,76 @@ private:
     std::map<std::pair<int, int>, std::vector<int32_t>> edges_;
 };
 
-bool is_convex(const std::vector<DVec3>& p, const DVec3& normal) {
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const DVec3 &a = p[i], &b = p[(i + 1) % p.size()], &c = p[(i + 2) % p.size()];
-        if (!(glm::dot(glm::cross(b - a, c - b), normal) > 0.0)) return false;
+/// Reads polygon f's corners into p and its unit normal, or returns why it cannot be used.
+std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vector<DVec3>& p, DVec3& normal) {
+    const int32_t first = in.face_offsets[f], count = in.face_offsets[f + 1] - first;
+    if (count < 3) return Defect::TooFewCorners;
+    p.clear();
+    bool finite = true;
+    for (int32_t k = 0; k < count; ++k) {
+        const int32_t v = in.corner_vertices[first + k];
+        if (v < 0 || static_cast<std::size_t>(v) >= in.vertex_count) return Defect::BadIndex;
+        const float* q = in.positions + 3 * static_cast<std::size_t>(v);
+        finite = finite && std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]);
+        p.emplace_back(q[0], q[1], q[2]);
     }
-    return true;
+    if (!finite) return Defect::NonFinite;
+    const DVec3 twice_area = detail::newell(p);
+    double longest = 0.0;
+    for (int32_t k = 0; k < count; ++k) longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
+    // Zero area relative to the polygon's size, at float precision (the input is float).
+    if (!(glm::length(twice_area) > 1e-7 * longest * longest)) return Defect::ZeroArea;
+    normal = glm::normalize(twice_area);
+    return std::nullopt;
 }
 
+/// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
+/// returns the element vertices of its corners.
+std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
+                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits) {
+    const int count = static_cast<int>(p.size());
+    auto length = [&](int i, int j) { return glm::length(p[j] - p[i]); };
+    // Counts first, checked against the cap in double, before any element is made.
+    auto check_cap = [&](double elements) {
+        if (double(out.size()) + elements > double(limits.max_elements)) {
+            char what[200];
+            std::snprintf(what, sizeof what,
+                          "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
+                          "for the scene; raise element_size",
+                          double(max_edge), elements, limits.max_elements);
+            fail(f, what);
+        }
+    };
+    PolygonBuilder build(out, p, static_cast<int32_t>(f), rho, emitted);
+    if (count == 3) {
+        // Regular subdivision needs one count for all three edges, so a short edge may be cut
+        // finer than its own length asks for (a T-vertex against a neighbour on that edge).
+        const double n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
+                                   segments(length(2, 0), max_edge)});
+        check_cap(n * n);
+        build.triangle(0, 1, 2, static_cast<int>(n));
+    } else if (count == 4 && detail::is_convex(p, normal)) {
+        // Opposite edges share a count; they agree with their neighbours when they are equally long.
+        double nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
+        double nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
+        limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu, nv);
+        check_cap(nu * nv);
+        build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
+    } else {
+        // Concave quads and n-gons: ear clipping, then one count for all triangles so that they
+        // share the vertices on their common diagonals.
+        const auto triangles = detail::triangulate(p, normal);
+        double n = 1.0;
+        for (const auto& t : triangles)
+            n = std::max({n, segments(length(t[0], t[1]), max_edge), segments(length(t[1], t[2]), max_edge),
+                          segments(length(t[2], t[0]), max_edge)});
+        check_cap(double(triangles.size()) * n * n);
+        for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
+    }
+    std::vector<int32_t> corners(p.size());
+    for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
+    return corners;
+}
 }  // namespace
 
 BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits) {
@@ -233,71 +262,39 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     out.corner_vertex.assign(corner_count, -1);
 
     std::vector<DVec3> p;
+    DVec3 normal;
+    std::vector<char> usable(in.face_count, 0);
     for (std::size_t f = 0; f < in.face_count; ++f) {
-        const int32_t first = in.face_offsets[f], count = in.face_offsets[f + 1] - first;
-        const auto polygon = static_cast<int32_t>(f);
-        auto skip = [&](Defect defect) { result.skipped.push_back({polygon, defect}); };
-        if (count < 3) { skip(Defect::TooFewCorners); continue; }
-        p.clear();
-        bool bad_index = false, finite = true;
-        for (int32_t k = 0; k < count; ++k) {
-            const int32_t v = in.corner_vertices[first + k];
-            if (v < 0 || static_cast<std::size_t>(v) >= in.vertex_count) { bad_index = true; break; }
-            const float* q = in.positions + 3 * static_cast<std::size_t>(v);
-            finite = finite && std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]);
-            p.emplace_back(q[0], q[1], q[2]);
-        }
-        if (bad_index) { skip(Defect::BadIndex); continue; }
-        if (!finite) { skip(Defect::NonFinite); continue; }
+        const std::optional<Defect> defect = read_polygon(in, f, p, normal);
+        if (defect) result.skipped.push_back({static_cast<int32_t>(f), *defect});
+        else usable[f] = 1;
+    }
+    const std::vector<detail::CutSegment> cuts =
+        limits.cut_intersections ? detail::find_intersections(in, usable) : std::vector<detail::CutSegment>{};
 
-        const DVec3 twice_area = newell(p);
-        double longest = 0.0;
-        for (int32_t k = 0; k < count; ++k) longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
-        // Zero area relative to the polygon's size, at float precision (the input is float).
-        if (!(glm::length(twice_area) > 1e-7 * longest * longest)) { skip(Defect::ZeroArea); continue; }
-        const DVec3 normal = glm::normalize(twice_area);
-
+    auto cut = cuts.begin();
+    for (std::size_t f = 0; f < in.face_count; ++f) {
+        if (!usable[f]) continue;
+        read_polygon(in, f, p, normal);
+        const int32_t first = in.face_offsets[f];
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
-        auto length = [&](int i, int j) { return glm::length(p[j] - p[i]); };
-        // Counts first, checked against the cap in double, before any element is made.
-        auto check_cap = [&](double elements) {
-            if (double(out.size()) + elements > double(limits.max_elements)) {
-                char what[200];
-                std::snprintf(what, sizeof what,
-                              "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
-                              "for the scene; raise element_size",
-                              double(max_edge), elements, limits.max_elements);
-                fail(f, what);
-            }
-        };
-        PolygonBuilder build(out, p, polygon, rho, emitted);
-        if (count == 3) {
-            // Regular subdivision needs one count for all three edges, so a short edge may be cut
-            // finer than its own length asks for (a T-vertex against a neighbour on that edge).
-            const double n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
-                                       segments(length(2, 0), max_edge)});
-            check_cap(n * n);
-            build.triangle(0, 1, 2, static_cast<int>(n));
-        } else if (count == 4 && is_convex(p, normal)) {
-            // Opposite edges share a count; they agree with their neighbours when they are equally long.
-            double nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
-            double nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
-            limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu, nv);
-            check_cap(nu * nv);
-            build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
-        } else {
-            // Concave quads and n-gons: ear clipping, then one count for all triangles so that they
-            // share the vertices on their common diagonals.
-            const auto triangles = triangulate(p, normal);
-            double n = 1.0;
-            for (const auto& t : triangles)
-                n = std::max({n, segments(length(t[0], t[1]), max_edge), segments(length(t[1], t[2]), max_edge),
-                              segments(length(t[2], t[0]), max_edge)});
-            check_cap(double(triangles.size()) * n * n);
-            for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
+        const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
+        if (cut == cut_end) {
+            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits);
+            for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
+            continue;
         }
-        for (int32_t k = 0; k < count; ++k) out.corner_vertex[first + k] = build.corner(k);
+        const detail::CutSegment *segments_begin = &*cut, *segments_end = segments_begin + (cut_end - cut);
+        const double tolerance = detail::plane_tolerance(p);
+        const std::size_t first_element = out.size();
+        for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
+            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits);
+            for (std::size_t k = 0; k < corners.size(); ++k)
+                if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
+        }
+        detail::mark_cut_edges(out, first_element, segments_begin, segments_end, tolerance);
+        cut = cut_end;
     }
     return result;
 }

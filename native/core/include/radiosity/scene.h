@@ -32,9 +32,12 @@ struct Elements {
     std::vector<Vec3> centre;                     ///< centroid (hemi-cubes sit here)
     std::vector<Vec3> normal;                     ///< unit normal
     std::vector<float> area;                      ///< square metres
-    std::vector<int32_t> polygon;                 ///< input polygon each element came from
+    std::vector<int32_t> polygon;                 ///< input polygon each element came from (cut pieces too)
     std::vector<Rgb> reflectance;                 ///< per element, in [0, 1)
     std::vector<Rgb> emission;                    ///< emitted radiance per element
+    /// Bit k: the edge from corner k to corner k + 1 lies where another polygon passes through this
+    /// element's polygon; corner colours do not blend across it. Empty = no such edges.
+    std::vector<uint8_t> cut_edges;
 
     /// Input corner -> element vertex holding the polygon's corner (for writing back colours);
     /// -1 for corners of skipped (degenerate) polygons.
@@ -67,6 +70,9 @@ struct ElementLimits {
     /// `max_aspect` times its width (thin slivers; docs/stability.md). 0 = off. Triangles keep
     /// their shape under regular subdivision, so this does not reach them.
     float max_aspect = 0.0f;
+    /// Cut polygons along the lines where other polygons pass through them, before subdividing, so
+    /// that no element straddles an intersection and leaks light across it (docs/stability.md).
+    bool cut_intersections = true;
 };
 
 /// Splits every polygon into elements whose edges are at most `max_edge` metres long

@@ -1,0 +1,169 @@
+/// @file intersection_find.cpp
+/// @brief Polygon-polygon intersection segments over a bounding-box tree (see intersection_find.h).
+#include "intersection_find.h"
+
+#include "box_tree.h"
+#include "polygon_geometry.h"
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace radiosity::detail {
+namespace {
+
+struct Plane {
+    DVec3 normal;
+    double offset = 0.0;     ///< dot(normal, x) on the plane
+    double tolerance = 0.0;  ///< plane_tolerance of the polygon
+    bool convex = true;
+};
+
+void read_corners(const SceneInput& in, std::size_t f, std::vector<DVec3>& p) {
+    p.clear();
+    for (int32_t k = in.face_offsets[f]; k < in.face_offsets[f + 1]; ++k) {
+        const float* q = in.positions + 3 * static_cast<std::size_t>(in.corner_vertices[k]);
+        p.emplace_back(q[0], q[1], q[2]);
+    }
+}
+
+/// The polygon itself when convex, else its ear-clipping triangles: each part meets a line in one interval.
+void convex_parts(const std::vector<DVec3>& p, const Plane& plane, std::vector<std::vector<DVec3>>& parts) {
+    parts.clear();
+    if (plane.convex) {
+        parts.push_back(p);
+        return;
+    }
+    for (const auto& t : triangulate(p, plane.normal)) parts.push_back({p[t[0]], p[t[1]], p[t[2]]});
+}
+
+/// Whether the corners lie strictly on both sides of the plane, beyond `tolerance`.
+bool straddles(const std::vector<DVec3>& p, const Plane& plane, double tolerance) {
+    bool above = false, below = false;
+    for (const DVec3& q : p) {
+        const double d = glm::dot(plane.normal, q) - plane.offset;
+        above = above || d > tolerance;
+        below = below || d < -tolerance;
+    }
+    return above && below;
+}
+
+/// The interval where a convex part crosses the plane, as two points on it; false if shorter than `tolerance`.
+bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& along, double tolerance, DVec3& a, DVec3& b) {
+    double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
+    auto take = [&](const DVec3& q) {
+        const double t = glm::dot(q, along);
+        if (t < t_min) t_min = t, a = q;
+        if (t > t_max) t_max = t, b = q;
+    };
+    for (std::size_t k = 0; k < part.size(); ++k) {
+        const DVec3 &p = part[k], &q = part[(k + 1) % part.size()];
+        const double dp = glm::dot(plane.normal, p) - plane.offset, dq = glm::dot(plane.normal, q) - plane.offset;
+        if (std::abs(dp) <= tolerance) take(p - dp * plane.normal);
+        else if ((dp > 0.0) != (dq > 0.0) && std::abs(dq) > tolerance) take(p + (q - p) * (dp / (dp - dq)));
+    }
+    return t_max - t_min > tolerance;
+}
+
+class Finder {
+public:
+    Finder(const SceneInput& in, const std::vector<char>& usable) : in_(in), usable_(usable), plane_(in.face_count) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.face_count), [&](const auto& range) {
+            std::vector<DVec3> p;
+            for (std::size_t f = range.begin(); f != range.end(); ++f) {
+                if (!usable_[f]) continue;
+                read_corners(in_, f, p);
+                Plane& plane = plane_[f];
+                plane.normal = glm::normalize(newell(p));
+                plane.offset = glm::dot(plane.normal, p[0]);
+                plane.tolerance = plane_tolerance(p);
+                plane.convex = p.size() == 3 || is_convex(p, plane.normal);
+            }
+        });
+    }
+
+    /// Appends the segments where polygon `by` passes through polygon `f`.
+    void cut(std::size_t f, std::size_t by, std::vector<CutSegment>& out) {
+        const Plane &pf = plane_[f], &pb = plane_[by];
+        const double tolerance = std::max(pf.tolerance, pb.tolerance);
+        read_corners(in_, by, by_corners_);
+        if (!straddles(by_corners_, pf, tolerance)) return;
+        read_corners(in_, f, f_corners_);
+        if (!straddles(f_corners_, pb, tolerance)) return;
+        const DVec3 common = glm::cross(pf.normal, pb.normal);  // direction of the planes' common line
+        if (!(glm::length(common) > 0.0)) return;
+        const DVec3 along = glm::normalize(common);
+        convex_parts(by_corners_, pb, by_parts_);
+        convex_parts(f_corners_, pf, f_parts_);
+        for (const auto& by_part : by_parts_) {
+            DVec3 a, b;
+            if (!crossing(by_part, pf, along, tolerance, a, b)) continue;
+            for (const auto& f_part : f_parts_) {
+                DVec3 ca = a, cb = b;
+                if (clip_segment(f_part, pf.normal, tolerance, ca, cb))
+                    out.push_back({static_cast<int32_t>(f), static_cast<int32_t>(by), ca, cb});
+            }
+        }
+    }
+
+private:
+    const SceneInput& in_;
+    const std::vector<char>& usable_;
+    std::vector<Plane> plane_;
+    // Scratch of one thread's Finder copy.
+    std::vector<DVec3> f_corners_, by_corners_;
+    std::vector<std::vector<DVec3>> f_parts_, by_parts_;
+};
+
+Box bounding_box(const SceneInput& in, std::size_t f) {
+    Box box{glm::vec3(std::numeric_limits<float>::infinity()), glm::vec3(-std::numeric_limits<float>::infinity())};
+    for (int32_t k = in.face_offsets[f]; k < in.face_offsets[f + 1]; ++k) {
+        const float* q = in.positions + 3 * static_cast<std::size_t>(in.corner_vertices[k]);
+        box.lo = glm::min(box.lo, glm::vec3(q[0], q[1], q[2]));
+        box.hi = glm::max(box.hi, glm::vec3(q[0], q[1], q[2]));
+    }
+    return box;
+}
+
+}  // namespace
+
+double plane_tolerance(const std::vector<DVec3>& p) {
+    double longest = 0.0, magnitude = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        longest = std::max(longest, glm::length(p[(k + 1) % p.size()] - p[k]));
+        magnitude = std::max({magnitude, std::abs(p[k].x), std::abs(p[k].y), std::abs(p[k].z)});
+    }
+    return std::max(1e-5 * longest, 16.0 * std::numeric_limits<float>::epsilon() * magnitude);
+}
+
+std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vector<char>& usable) {
+    std::vector<int32_t> polygon;  // tree index -> polygon
+    std::vector<Box> boxes;
+    for (std::size_t f = 0; f < in.face_count; ++f)
+        if (usable[f]) polygon.push_back(static_cast<int32_t>(f)), boxes.push_back(bounding_box(in, f));
+    const BoxTree tree(boxes);
+    const Finder finder(in, usable);
+    tbb::enumerable_thread_specific<Finder> finders(finder);
+    tbb::enumerable_thread_specific<std::vector<CutSegment>> found;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size()), [&](const auto& range) {
+        Finder& local = finders.local();
+        std::vector<CutSegment>& out = found.local();
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+            tree.visit_overlapping(boxes[i], [&](int32_t j) {
+                if (std::size_t(j) != i) local.cut(std::size_t(polygon[i]), std::size_t(polygon[j]), out);
+            });
+    });
+    std::vector<CutSegment> segments;
+    for (const auto& part : found) segments.insert(segments.end(), part.begin(), part.end());
+    // One polygon's segments were found by one task in tree order; the stable sort keeps that order.
+    std::stable_sort(segments.begin(), segments.end(),
+                     [](const CutSegment& x, const CutSegment& y) { return x.polygon < y.polygon; });
+    return segments;
+}
+
+}  // namespace radiosity::detail

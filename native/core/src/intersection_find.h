@@ -1,0 +1,32 @@
+/// @file intersection_find.h
+/// @brief Where polygons pass through each other: the segments along which each polygon must be cut.
+#pragma once
+
+#include "radiosity/scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace radiosity::detail {
+
+/// A segment in polygon `polygon`'s plane, inside it, where polygon `by` passes through it.
+struct CutSegment {
+    int32_t polygon;
+    int32_t by;
+    glm::dvec3 a, b;
+};
+
+/// Distance below which points count as on a polygon's plane: 1e-5 of its longest edge, and never
+/// below float round-off at its coordinates (the input is float).
+double plane_tolerance(const std::vector<glm::dvec3>& corners);
+
+/// Every segment where a usable polygon has corners strictly on both sides of another usable
+/// polygon's plane and the other way round, and the two overlap along their planes' common line.
+/// Touching (a box standing on a floor, walls meeting at a corner) and coplanar faces give none.
+/// Candidates come from a BoxTree over the polygons' bounding boxes. Sorted by polygon; the
+/// segments of one polygon come in a fixed order. `usable[f]` marks polygons with valid corners.
+std::vector<CutSegment> find_intersections(const SceneInput& input, const std::vector<char>& usable);
+
+}  // namespace radiosity::detail

@@ -1,0 +1,79 @@
+/// @file polygon_geometry.cpp
+/// @brief Area vector, convexity and ear clipping of planar polygons (see polygon_geometry.h).
+#include "polygon_geometry.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cstddef>
+
+namespace radiosity::detail {
+
+DVec3 newell(const std::vector<DVec3>& p) {
+    DVec3 n(0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) n += glm::cross(p[i], p[(i + 1) % p.size()]);
+    return n;
+}
+
+bool is_convex(const std::vector<DVec3>& p, const DVec3& normal) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const DVec3 &a = p[i], &b = p[(i + 1) % p.size()], &c = p[(i + 2) % p.size()];
+        if (!(glm::dot(glm::cross(b - a, c - b), normal) > 0.0)) return false;
+    }
+    return true;
+}
+
+std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const DVec3& normal) {
+    std::vector<int> ring(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) ring[i] = static_cast<int>(i);
+    auto convex = [&](int a, int b, int c) { return glm::dot(glm::cross(p[b] - p[a], p[c] - p[b]), normal) > 0.0; };
+    auto inside = [&](int q, int a, int b, int c) {
+        return glm::dot(glm::cross(p[b] - p[a], p[q] - p[a]), normal) >= 0.0 &&
+               glm::dot(glm::cross(p[c] - p[b], p[q] - p[b]), normal) >= 0.0 &&
+               glm::dot(glm::cross(p[a] - p[c], p[q] - p[c]), normal) >= 0.0;
+    };
+    std::vector<std::array<int, 3>> triangles;
+    while (ring.size() > 3) {
+        const std::size_t m = ring.size();
+        std::size_t ear = m;
+        for (std::size_t i = 0; i < m && ear == m; ++i) {
+            const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+            if (!convex(a, b, c)) continue;
+            bool empty = true;
+            for (int q : ring)
+                if (q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && inside(q, a, b, c)) {
+                    empty = false;
+                    break;
+                }
+            if (empty) ear = i;
+        }
+        if (ear == m) ear = 0;  // self-intersecting outline: no true ear exists, cut any corner
+        triangles.push_back({ring[(ear + m - 1) % m], ring[ear], ring[(ear + 1) % m]});
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ear));
+    }
+    triangles.push_back({ring[0], ring[1], ring[2]});
+    return triangles;
+}
+
+bool clip_segment(const std::vector<DVec3>& part, const DVec3& normal, double tolerance, DVec3& a, DVec3& b) {
+    double t0 = 0.0, t1 = 1.0;
+    const DVec3 d = b - a;
+    for (std::size_t k = 0; k < part.size(); ++k) {
+        const DVec3 inward = glm::cross(normal, part[(k + 1) % part.size()] - part[k]);
+        const double at_a = glm::dot(inward, a - part[k]), rate = glm::dot(inward, d);
+        if (rate == 0.0) {
+            if (at_a < 0.0) return false;
+        } else if (rate > 0.0) {
+            t0 = std::max(t0, -at_a / rate);
+        } else {
+            t1 = std::min(t1, -at_a / rate);
+        }
+    }
+    if (!(t1 > t0) || (t1 - t0) * glm::length(d) <= tolerance) return false;
+    const DVec3 from = a;
+    a = from + d * t0;
+    b = from + d * t1;
+    return true;
+}
+
+}  // namespace radiosity::detail
