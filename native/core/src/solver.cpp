@@ -104,6 +104,10 @@ SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings
 double recommended_over_relaxation(const Elements& elements) {
     double rho_max = 0.0;
     for (const Rgb& rho : elements.reflectance) rho_max = std::max({rho_max, rho.r, rho.g, rho.b});
+    return recommended_over_relaxation(rho_max);
+}
+
+double recommended_over_relaxation(double rho_max) {
     return std::min(1.9, 2.0 / (1.0 + std::sqrt(1.0 - rho_max * rho_max)));
 }
 

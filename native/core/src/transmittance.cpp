@@ -45,15 +45,9 @@ MediumTracer::MediumTracer(const std::vector<Medium>& media, const Zones& zones)
         g.hi = boxes[i].hi;
         g.world_lo = boxes[i].world_lo;
         g.world_hi = boxes[i].world_hi;
-        g.zone.assign(media[i].voxel_count(), -1);
+        g.zone = voxel_zones(media[i], i, zones);
         grids_.push_back(std::move(g));
     }
-    // Zones are numbered medium by medium, so the k-th zone of a medium maps to its voxel here.
-    std::vector<int32_t> grid_of(media.size(), -1);
-    for (std::size_t i = 0, g = 0; i < media.size(); ++i)
-        if (!boxes[i].empty) grid_of[i] = static_cast<int32_t>(g++);
-    for (std::size_t k = 0; k < zones.size(); ++k)
-        grids_[grid_of[zones.medium[k]]].zone[zones.voxel[k]] = static_cast<int32_t>(k);
 }
 
 Channels MediumTracer::trace(const Vec3& origin, const Vec3& direction, float t_max,
@@ -113,7 +107,9 @@ void MediumTracer::walk(const Grid& g, const Vec3& origin, const Vec3& d, float 
             const Channels& K = extinction_[k];
             const Channels after(tau.r * std::exp(-K.r * length), tau.g * std::exp(-K.g * length),
                                  tau.b * std::exp(-K.b * length));
-            credits.push_back({k, tau - after});
+            // A merged zone spans several voxels: one credit per zone crossed, not per voxel.
+            if (!credits.empty() && credits.back().zone == k) credits.back().fraction += tau - after;
+            else credits.push_back({k, tau - after});
             tau = after;
             if (tau.r < kOpaque && tau.g < kOpaque && tau.b < kOpaque) return;
         }

@@ -16,12 +16,13 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 }  // namespace
 
 ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
-                                int zone_resolution, const ProgressFn& progress, int grid_subdivision) {
+                                int zone_resolution, const ProgressFn& progress, int grid_subdivision,
+                                int max_block_level) {
     ZonalBakeResult result;
     BakeResult& bake = result.surfaces;
 
     auto start = Clock::now();
-    result.zones = build_zones(media);
+    result.zones = build_zones(media, max_block_level);
     result.seconds_zones = seconds_since(start);
     if (!settings.lights.empty() && result.zones.size() > 0)
         throw InputError("point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
@@ -59,12 +60,9 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     bake.colors = interpolate_corners(elements, bake.solve.radiance, input.material, settings.hard_edge_angle);
     bake.seconds_interpolate = seconds_since(start);
 
-    std::vector<std::vector<Rgb>> radiance(media.size());
-    for (std::size_t i = 0; i < media.size(); ++i) radiance[i].assign(media[i].voxel_count(), Rgb(0.0));
-    for (std::size_t k = 0; k < result.zones.size(); ++k)
-        radiance[result.zones.medium[k]][result.zones.voxel[k]] = result.zone_radiance[k];
     for (std::size_t i = 0; i < media.size(); ++i)
-        result.grids.push_back(medium_grids(media[i], radiance[i], grid_subdivision));
+        result.grids.push_back(medium_grids(media[i], voxel_radiance(media[i], i, result.zones, result.zone_radiance),
+                                            grid_subdivision));
     return result;
 }
 

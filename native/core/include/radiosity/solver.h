@@ -27,7 +27,7 @@ struct SolveSettings {
     double tolerance = 1e-4;     ///< relative residual to stop at
     int max_iterations = 1000;   ///< sweeps; for progressive refinement one sweep = n shots
     bool ambient = false;        ///< progressive: add the seed's ambient term to the reported preview
-    /// Gauss-Seidel only: successive over-relaxation, L_i += omega (L_i^GS - L_i), omega in (0, 2).
+    /// Gauss-Seidel only (surfaces and the zonal system): successive over-relaxation, L_i += omega (L_i^GS - L_i), omega in (0, 2).
     /// 1 = plain Gauss-Seidel; 0 = automatic, recommended_over_relaxation(elements), the measured
     /// choice. Pays off where reflectance is near 1 (docs/stability.md).
     double over_relaxation = 1.0;
@@ -56,6 +56,8 @@ SolveResult solve(const Elements& elements, RowSource& rows, const SolveSettings
 /// omega for Gauss-Seidel from the largest reflectance: 2 / (1 + sqrt(1 - rho_max^2)), the optimum
 /// of SOR when Jacobi's spectral radius is rho_max (a closed room), capped at 1.9.
 double recommended_over_relaxation(const Elements& elements);
+/// The same from the largest reflectance (or a zone's albedo) rho_max in [0, 1].
+double recommended_over_relaxation(double rho_max);
 
 /// Relative residual |E - (I - rho F) L| / |E| of `radiance` with the rows of F, as the gathering
 /// solvers measure it (and progressive refinement on stored columns).

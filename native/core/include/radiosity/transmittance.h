@@ -26,14 +26,14 @@ struct ZoneCredit {
     Channels fraction;
 };
 
-/// Walks rays through the zones of a set of media. Read-only after construction: share it between threads.
+/// Walks rays through the zones of a set of media, voxel by voxel, crediting each voxel's zone. Read-only after construction: share it between threads.
 class MediumTracer {
 public:
     /// `zones` must be build_zones(media); the tracer keeps no reference to either.
     MediumTracer(const std::vector<Medium>& media, const Zones& zones);
 
     /// Transmittance from `origin` to origin + t_max * direction (`direction` unit; t_max may be
-    /// infinite), replacing `credits` with the zones crossed in ray order. The walk stops early
+    /// infinite), replacing `credits` with the zones crossed in ray order (one credit per stretch in a zone). The walk stops early
     /// once tau < 1e-7 in every channel; the returned tau still closes the sum to 1.
     Channels trace(const Vec3& origin, const Vec3& direction, float t_max, std::vector<ZoneCredit>& credits) const;
 
@@ -43,7 +43,7 @@ private:
         float h = 0.0f;
         std::array<int32_t, 3> dims{0, 0, 0}, lo{0, 0, 0}, hi{0, 0, 0};
         Vec3 world_lo{0.0f}, world_hi{0.0f};
-        std::vector<int32_t> zone;  ///< per voxel, -1 where empty
+        std::vector<int32_t> zone;  ///< per voxel, its zone (voxel_zones), -1 where empty
     };
     void walk(const Grid& grid, const Vec3& origin, const Vec3& direction, float t0, float t1, Channels& tau,
               std::vector<ZoneCredit>& credits) const;

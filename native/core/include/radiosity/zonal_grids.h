@@ -40,4 +40,13 @@ struct MediumGrids {
 /// the wrong size.
 MediumGrids medium_grids(const Medium& medium, const std::vector<Rgb>& radiance, int subdivision);
 
+/// L per voxel of `medium` (number `medium_index` of the media `zones` were built from) for
+/// medium_grids: a one-voxel zone's L_k; inside a merged block (build_zones) the linear field
+/// L_k + g . (x - c_k), g per axis the difference between the mean zones just across the block's two
+/// faces (one-sided with L_k at the medium's border), clamped at 0 and scaled per channel so its
+/// mean over the block is L_k: each zone keeps its power. Exact for a linear radiance where the
+/// zones across each face are centred on the block's axis. 0 outside zones.
+std::vector<Rgb> voxel_radiance(const Medium& medium, std::size_t medium_index, const Zones& zones,
+                                const std::vector<Rgb>& zone_radiance);
+
 }  // namespace radiosity
