@@ -70,10 +70,12 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
                                 float element_size, int resolution, const std::string& method, double tolerance,
                                 int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                                 std::size_t matrix_budget_bytes, const py::object& progress,
-                                const py::list& media_list, int zone_resolution, int grid_subdivision) {
+                                const py::list& media_list, int zone_resolution, int grid_subdivision,
+                                bool merge_uniform_zones, double over_relaxation) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
-    const BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
-                                                hard_edge_angle, ambient, lights, matrix_budget_bytes);
+    BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
+                                          hard_edge_angle, ambient, lights, matrix_budget_bytes);
+    settings.solve.over_relaxation = over_relaxation;  // the core checks its range (ValueError)
     if (zone_resolution < 8 || zone_resolution % 2 != 0)
         throw py::value_error("zone_resolution must be an even number >= 8");
     if (grid_subdivision < 1) throw py::value_error("grid_subdivision must be at least 1");
@@ -84,7 +86,8 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
     ZonalBakeResult result;
     try {
         py::gil_scoped_release release;
-        result = bake_with_media(input, media, settings, zone_resolution, reporter.function(), grid_subdivision);
+        result = bake_with_media(input, media, settings, zone_resolution, reporter.function(), grid_subdivision,
+                                 merge_uniform_zones ? kDefaultMaxBlockLevel : 0);
     } catch (const Cancelled&) {
         reporter.rethrow_if_failed();
         throw;
@@ -95,7 +98,10 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
     const Zones& zones = result.zones;
     std::vector<Rgb> weight(zones.size());
     for (std::size_t k = 0; k < zones.size(); ++k) weight[k] = zones.weight(k);
+    std::size_t voxels = 0;  // the zones there would be without merging: voxels with K_t > 0
+    for (int32_t b : zones.block) voxels += std::size_t(b) * b * b;
     out["zones"] = zones.size();
+    out["zones_before_merge"] = voxels;
     out["zone_radiance"] = to_numpy(result.zone_radiance);
     // What the solve used per zone, so the add-on can account for the media's power too.
     out["zone_medium"] = to_numpy(zones.medium);
@@ -158,7 +164,10 @@ void bind_zonal(py::module_& m) {
     using namespace pybind11::literals;
     m.def("bake_with_media", &bake_with_media_arrays,
           "bake() with participating media: media = [{origin, voxel_size, extinction, albedo, emission "
-          "(nz, ny, nx, 3)}]. Returns bake()'s dict plus zones (count), zone_radiance, zone_medium, "
+          "(nz, ny, nx, 3)}]. merge_uniform_zones: uniform blocks of voxels become one zone each (octree, "
+          "build_zones); over_relaxation as bake() (Gauss-Seidel; 0 = the core's omega). "
+          "Returns bake()'s dict plus zones (count after merging), zones_before_merge (voxels with K_t > 0), "
+          "zone_radiance, zone_medium, "
           "zone_weight (4 K_t V), zone_emitted, zone_albedo, zone_incident, and per medium grids "
           "[{origin, voxel_size, density: K_t, emission: K_t J}] at grid_subdivision cells per zone edge, J "
           "interpolated between zones keeping each zone's power (zonal_grids.h).",
@@ -167,7 +176,8 @@ void bind_zonal(py::module_& m) {
           "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
           "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
           "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes, "progress"_a = py::none(),
-          "media"_a = py::list(), "zone_resolution"_a = 32, "grid_subdivision"_a = 3);
+          "media"_a = py::list(), "zone_resolution"_a = 32, "grid_subdivision"_a = 3, "merge_uniform_zones"_a = true,
+          "over_relaxation"_a = 1.0);
     m.def("principled_volume", &principled_volume_arrays,
           "Cycles' Principled Volume per voxel (blackbody excluded): {scattering, absorption, emission}, "
           "each shape + (3,), from density and emission_strength grids of one shape.",

@@ -33,11 +33,12 @@ class IsothermalTest(unittest.TestCase):
         for method in ("gauss_seidel", "progressive"):
             with self.subTest(method=method):
                 r = bake((v, f, c, reflectance, emission), [fog(K * (1.0 - Omega) * L0, K, Omega)], method=method)
-                self.assertEqual(r["zones"], 64)
+                self.assertEqual(r["zones"], 8)  # uniform: 2^3 voxels per zone by default
+                self.assertEqual(r["zones_before_merge"], 64)
                 self.assertTrue(r["converged"])
                 np.testing.assert_allclose(r["element_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
                 np.testing.assert_allclose(r["corner_radiance"], np.tile(L0, (24, 1)), rtol=5e-3)
-                np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (64, 1)), rtol=5e-3)
+                np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (8, 1)), rtol=5e-3)
                 grids = r["grids"][0]  # 3 cells per zone edge by default, on the medium's corner
                 self.assertEqual(grids["density"].shape, (12, 12, 12, 3))
                 self.assertEqual(grids["origin"], (0.0, 0.0, 0.0))
@@ -48,7 +49,9 @@ class IsothermalTest(unittest.TestCase):
     def test_grid_subdivision_one_is_the_zones(self):
         v, f, c, _, _ = box_arrays()
         r = bake((v, f, c, np.zeros((6, 3), np.float32), np.ones((6, 3), np.float32)), [fog(0.0, 2.0, 0.5)],
-                 grid_subdivision=1)
+                 grid_subdivision=1, merge_uniform_zones=False)
+        self.assertEqual(r["zones"], 64)
+        self.assertEqual(r["zones_before_merge"], 64)
         grids = r["grids"][0]
         self.assertEqual(grids["emission"].shape, (4, 4, 4, 3))
         self.assertEqual(grids["voxel_size"], 0.25)
@@ -62,7 +65,7 @@ class IsothermalTest(unittest.TestCase):
         v, f, c, _, _ = box_arrays()
         r = bake((v, f, c, np.zeros((6, 3), np.float32), np.tile(L0, (6, 1)).astype(np.float32)),
                  [fog(0.0, 3.0, 1.0)])
-        np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (64, 1)), rtol=5e-3)
+        np.testing.assert_allclose(r["zone_radiance"], np.tile(L0, (r["zones"], 1)), rtol=5e-3)
 
     def test_power_emitted_is_absorbed_by_walls_and_medium(self):
         v, f, c, _, _ = box_arrays()
@@ -77,6 +80,37 @@ class IsothermalTest(unittest.TestCase):
         zones = np.pi * (r["zone_weight"] * (1.0 - r["zone_albedo"]) * r["zone_incident"]).sum(axis=0)
         np.testing.assert_allclose((walls + zones) / emitted, 1.0, atol=1e-3)
         self.assertGreater(zones.min(), 0.05 * emitted.min())  # the medium takes a real share
+
+
+class MergeAndOverRelaxationTest(unittest.TestCase):
+    def test_only_the_uniform_half_merges(self):
+        # 4^3 voxels: x < 2 uniform (4 blocks of 2^3), x >= 2 extinction varying per voxel (32 zones).
+        medium = fog(0.0, 2.0, 0.5)
+        extinction = np.array(medium["extinction"])
+        extinction[:, :, 2:, :] += np.arange(32, dtype=np.float32).reshape(4, 4, 2, 1) * 0.1
+        medium["extinction"] = extinction
+        v, f, c, _, _ = box_arrays()
+        rho, emission = np.full((6, 3), 0.5, np.float32), np.ones((6, 3), np.float32)
+        merged = bake((v, f, c, rho, emission), [medium])
+        self.assertEqual((merged["zones"], merged["zones_before_merge"]), (4 + 32, 64))
+        self.assertEqual(len(merged["zone_radiance"]), 36)
+        voxels = bake((v, f, c, rho, emission), [medium], merge_uniform_zones=False)
+        self.assertEqual((voxels["zones"], voxels["zones_before_merge"]), (64, 64))
+        # Each merged zone's weight is its 8 voxels' together: the medium's total 4 K_t V is the same.
+        np.testing.assert_allclose(merged["zone_weight"].sum(axis=0), voxels["zone_weight"].sum(axis=0), rtol=1e-6)
+
+    def test_over_relaxation_same_answer_fewer_sweeps(self):
+        v, f, c, _, _ = box_arrays()
+        rho, emission = np.full((6, 3), 0.95, np.float32), np.zeros((6, 3), np.float32)
+        emission[1] = 4.0
+        plain = bake((v, f, c, rho, emission), [fog(0.0, 2.0, 0.99)])
+        over = bake((v, f, c, rho, emission), [fog(0.0, 2.0, 0.99)], over_relaxation=0.0)
+        self.assertTrue(plain["converged"] and over["converged"])
+        self.assertLess(over["iterations"], plain["iterations"] / 2)
+        np.testing.assert_allclose(over["zone_radiance"], plain["zone_radiance"], rtol=1e-5)
+        np.testing.assert_allclose(over["element_radiance"], plain["element_radiance"], rtol=1e-5)
+        with self.assertRaisesRegex(ValueError, "over_relaxation"):
+            bake((v, f, c, rho, emission), [fog(0.0, 2.0, 0.99)], over_relaxation=2.5)
 
 
 class MediaInputTest(unittest.TestCase):
