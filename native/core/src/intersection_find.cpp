@@ -70,54 +70,58 @@ bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& a
     return t_max - t_min > tolerance;
 }
 
+/// Whether the box lies within `tolerance` of one side of the plane (then no polygon in it crosses the plane).
+bool one_side(const Box& box, const Plane& plane, double tolerance) {
+    double centre = -plane.offset, radius = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        centre += plane.normal[a] * 0.5 * (double(box.lo[a]) + double(box.hi[a]));
+        radius += std::abs(plane.normal[a]) * 0.5 * (double(box.hi[a]) - double(box.lo[a]));
+    }
+    return centre - radius >= -tolerance || centre + radius <= tolerance;
+}
+
+/// Each polygon's plane; then, per pair, the segments. Holds one thread's scratch.
 class Finder {
 public:
-    Finder(const SceneInput& in, const std::vector<char>& usable) : in_(in), usable_(usable), plane_(in.face_count) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.face_count), [&](const auto& range) {
-            std::vector<DVec3> p;
-            for (std::size_t f = range.begin(); f != range.end(); ++f) {
-                if (!usable_[f]) continue;
-                read_corners(in_, f, p);
-                Plane& plane = plane_[f];
-                plane.normal = glm::normalize(newell(p));
-                plane.offset = glm::dot(plane.normal, p[0]);
-                plane.tolerance = plane_tolerance(p);
-                plane.convex = p.size() == 3 || is_convex(p, plane.normal);
-            }
-        });
+    Finder(const SceneInput& in, const std::vector<Plane>& planes) : in_(in), plane_(planes) {}
+
+    /// Appends the segments where polygon a passes through polygon b, and b through a.
+    void cut_pair(std::size_t a, std::size_t b, const Box& a_box, const Box& b_box, std::vector<CutSegment>& out) {
+        const Plane &pa = plane_[a], &pb = plane_[b];
+        const double tolerance = std::max(pa.tolerance, pb.tolerance);
+        if (one_side(b_box, pa, tolerance) || one_side(a_box, pb, tolerance)) return;  // cheap: most pairs end here
+        read_corners(in_, a, a_corners_);
+        if (!straddles(a_corners_, pb, tolerance)) return;
+        read_corners(in_, b, b_corners_);
+        if (!straddles(b_corners_, pa, tolerance)) return;
+        const DVec3 common = glm::cross(pa.normal, pb.normal);  // direction of the planes' common line
+        if (!(glm::length(common) > 0.0)) return;
+        convex_parts(a_corners_, pa, a_parts_);
+        convex_parts(b_corners_, pb, b_parts_);
+        cut(a, b, a_parts_, b_parts_, glm::normalize(common), tolerance, out);
+        cut(b, a, b_parts_, a_parts_, glm::normalize(common), tolerance, out);
     }
 
-    /// Appends the segments where polygon `by` passes through polygon `f`.
-    void cut(std::size_t f, std::size_t by, std::vector<CutSegment>& out) {
-        const Plane &pf = plane_[f], &pb = plane_[by];
-        const double tolerance = std::max(pf.tolerance, pb.tolerance);
-        read_corners(in_, by, by_corners_);
-        if (!straddles(by_corners_, pf, tolerance)) return;
-        read_corners(in_, f, f_corners_);
-        if (!straddles(f_corners_, pb, tolerance)) return;
-        const DVec3 common = glm::cross(pf.normal, pb.normal);  // direction of the planes' common line
-        if (!(glm::length(common) > 0.0)) return;
-        const DVec3 along = glm::normalize(common);
-        convex_parts(by_corners_, pb, by_parts_);
-        convex_parts(f_corners_, pf, f_parts_);
-        for (const auto& by_part : by_parts_) {
+private:
+    /// Appends the segments where polygon `by` (its convex parts) passes through polygon f.
+    void cut(std::size_t f, std::size_t by, const std::vector<std::vector<DVec3>>& f_parts,
+             const std::vector<std::vector<DVec3>>& by_parts, const DVec3& along, double tolerance,
+             std::vector<CutSegment>& out) const {
+        for (const auto& by_part : by_parts) {
             DVec3 a, b;
-            if (!crossing(by_part, pf, along, tolerance, a, b)) continue;
-            for (const auto& f_part : f_parts_) {
+            if (!crossing(by_part, plane_[f], along, tolerance, a, b)) continue;
+            for (const auto& f_part : f_parts) {
                 DVec3 ca = a, cb = b;
-                if (clip_segment(f_part, pf.normal, tolerance, ca, cb))
+                if (clip_segment(f_part, plane_[f].normal, tolerance, ca, cb))
                     out.push_back({static_cast<int32_t>(f), static_cast<int32_t>(by), ca, cb});
             }
         }
     }
 
-private:
     const SceneInput& in_;
-    const std::vector<char>& usable_;
-    std::vector<Plane> plane_;
-    // Scratch of one thread's Finder copy.
-    std::vector<DVec3> f_corners_, by_corners_;
-    std::vector<std::vector<DVec3>> f_parts_, by_parts_;
+    const std::vector<Plane>& plane_;
+    std::vector<DVec3> a_corners_, b_corners_;
+    std::vector<std::vector<DVec3>> a_parts_, b_parts_;
 };
 
 Box bounding_box(const SceneInput& in, std::size_t f) {
@@ -147,22 +151,31 @@ std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vect
     for (std::size_t f = 0; f < in.face_count; ++f)
         if (usable[f]) polygon.push_back(static_cast<int32_t>(f)), boxes.push_back(bounding_box(in, f));
     const BoxTree tree(boxes);
-    const Finder finder(in, usable);
-    tbb::enumerable_thread_specific<Finder> finders(finder);
+    std::vector<Plane> planes(in.face_count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.face_count), [&](const auto& range) {
+        std::vector<DVec3> p;
+        for (std::size_t f = range.begin(); f != range.end(); ++f) {
+            if (!usable[f]) continue;
+            read_corners(in, f, p);
+            Plane& plane = planes[f];
+            plane.normal = glm::normalize(newell(p));
+            plane.offset = glm::dot(plane.normal, p[0]);
+            plane.tolerance = plane_tolerance(p);
+            plane.convex = p.size() == 3 || is_convex(p, plane.normal);
+        }
+    });
+    tbb::enumerable_thread_specific<Finder> finders(in, planes);
     tbb::enumerable_thread_specific<std::vector<CutSegment>> found;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size()), [&](const auto& range) {
-        Finder& local = finders.local();
-        std::vector<CutSegment>& out = found.local();
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-            tree.visit_overlapping(boxes[i], [&](int32_t j) {
-                if (std::size_t(j) != i) local.cut(std::size_t(polygon[i]), std::size_t(polygon[j]), out);
-            });
+    tree.visit_overlapping_pairs([&](int32_t i, int32_t j) {
+        finders.local().cut_pair(std::size_t(polygon[i]), std::size_t(polygon[j]), boxes[i], boxes[j], found.local());
     });
     std::vector<CutSegment> segments;
     for (const auto& part : found) segments.insert(segments.end(), part.begin(), part.end());
-    // One polygon's segments were found by one task in tree order; the stable sort keeps that order.
-    std::stable_sort(segments.begin(), segments.end(),
-                     [](const CutSegment& x, const CutSegment& y) { return x.polygon < y.polygon; });
+    // Threads finish in any order; one pair's segments come from one call, in its order, which the
+    // stable sort keeps: the result does not depend on the threads.
+    std::stable_sort(segments.begin(), segments.end(), [](const CutSegment& x, const CutSegment& y) {
+        return x.polygon != y.polygon ? x.polygon < y.polygon : x.by < y.by;
+    });
     return segments;
 }
 
