@@ -76,7 +76,8 @@ struct ElementLimits {
 };
 
 /// Splits every polygon into elements whose edges are at most `max_edge` metres long
-/// (0 = one element per polygon; n-gons are always split into triangles and quads).
+/// (0 = one element per polygon; n-gons are always split into triangles and quads), after cutting
+/// it along the lines where other polygons pass through it (`limits.cut_intersections`).
 /// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
 /// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.
 BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {});
