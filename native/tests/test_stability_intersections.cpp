@@ -157,3 +157,48 @@ TEST(Leaks, ScenesWithoutIntersectionsAreUnchangedBitForBit) {
     EXPECT_EQ(on.colors.element_corner, off.colors.element_corner);
     for (const uint8_t bits : on.build.elements.cut_edges) EXPECT_EQ(bits, 0);
 }
+
+TEST(Leaks, ShortWallThroughAConcaveFloorCutsItWhereItPasses) {
+    // An L-shaped floor (area 3 m^2, concave: ear-clipped before cutting) and a wall through it at
+    // x = 0.5 that ends inside it, from y = 0.25 to 1.5.
+    test::SceneArrays scene;
+    scene.add_polygon({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, Rgb(0.5), Rgb(0));
+    scene.add_quad({0.5f, 0.25f, -0.5f}, {0.5f, 0.25f, 0.5f}, {0.5f, 1.5f, 0.5f}, {0.5f, 1.5f, -0.5f}, Rgb(0.5));
+    const Elements e = build_elements(scene.input(), 0.3f).elements;
+    double floor_area = 0.0;
+    int cut_edges = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        if (e.polygon[i] != 0) continue;
+        floor_area += e.area[i];
+        const int m = e.is_triangle(i) ? 3 : 4;
+        float x_min = 1e9f, x_max = -1e9f;
+        for (int k = 0; k < m; ++k) {
+            const Vec3& v = e.vertices[e.corners[i][k]];
+            x_min = std::min(x_min, v.x), x_max = std::max(x_max, v.x);
+            if ((e.cut_edges[i] >> k) & 1) {  // flagged edges lie on the wall's foot
+                const Vec3& w = e.vertices[e.corners[i][(k + 1) % m]];
+                ++cut_edges;
+                EXPECT_NEAR(v.x, 0.5f, 1e-6f);
+                EXPECT_NEAR(w.x, 0.5f, 1e-6f);
+                EXPECT_GE(0.5f * (v.y + w.y), 0.25f);
+                EXPECT_LE(0.5f * (v.y + w.y), 1.5f);
+            }
+        }
+        // Where the line x = 0.5 crosses the element (convex), against the wall's foot y in [0.25, 1.5].
+        float cross_min = 1e9f, cross_max = -1e9f;
+        for (int k = 0; k < m; ++k) {
+            const Vec3 &v = e.vertices[e.corners[i][k]], &w = e.vertices[e.corners[i][(k + 1) % m]];
+            if ((v.x - 0.5f) * (w.x - 0.5f) >= 0.0f) continue;
+            const float y = v.y + (w.y - v.y) * (0.5f - v.x) / (w.x - v.x);
+            cross_min = std::min(cross_min, y), cross_max = std::max(cross_max, y);
+        }
+        const bool straddles = x_min < 0.5f - 1e-6f && x_max > 0.5f + 1e-6f;
+        EXPECT_FALSE(straddles && cross_max > 0.25f + 1e-6f && cross_min < 1.5f - 1e-6f) << "element " << i << " straddles the wall";
+    }
+    EXPECT_NEAR(floor_area, 3.0, 3e-6);  // the pieces tile the floor
+    EXPECT_GT(cut_edges, 0);
+    for (int32_t c = 0; c < scene.face_offsets.back(); ++c) {
+        const int32_t v = scene.corner_vertices[c];
+        EXPECT_EQ(e.vertices[e.corner_vertex[c]], Vec3(scene.positions[3 * v], scene.positions[3 * v + 1], scene.positions[3 * v + 2]));
+    }
+}
