@@ -169,7 +169,7 @@ void bind_zonal(py::module_& m) {
           "Returns bake()'s dict plus zones (count after merging), zones_before_merge (voxels with K_t > 0), "
           "zone_radiance, zone_medium, "
           "zone_weight (4 K_t V), zone_emitted, zone_albedo, zone_incident, and per medium grids "
-          "[{origin, voxel_size, density: K_t, emission: K_t J}] at grid_subdivision cells per zone edge, J "
+          "[{origin, voxel_size, density: K_t, emission: K_t J}] at grid_subdivision cells per voxel edge, J "
           "interpolated between zones keeping each zone's power (zonal_grids.h).",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "resolution"_a = 128,

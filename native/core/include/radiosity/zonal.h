@@ -8,8 +8,8 @@
 ///    dF_p * tau along the cell's ray up to j (the seed's S_iS_j / A_i), every zone k crossed gets
 ///    dF_p * its credited fraction (S_iV_k / A_i);
 ///  - zone k (full cube, cell weights solid angle / 4 pi): the same walk, but each cell's ray starts
-///    at its own point inside the zone, spread over the voxel by a low-discrepancy sequence, so the
-///    zone's own extinction of its light is counted: V_kV_k > 0, and adjacent and optically thick
+///    at its own point inside the zone, spread over its whole block by a low-discrepancy sequence, so
+///    the zone's own extinction of its light is counted: V_kV_k > 0, and adjacent and optically thick
 ///    zones stay accurate where the seed's point formula (32) fails (test_volume_zonal.cpp).
 ///    Surfaces are found by the cube's item buffer from the zone's centre; each ray's distance to
 ///    that element is measured from its own start point (to the element's plane).

@@ -3,9 +3,9 @@
 /// corner colours and the grids a renderer needs to show the media.
 ///
 /// Output grids per medium (zonal_grids.h): `density` = K_t and `emission` = K_t J on a lattice
-/// `grid_subdivision` times finer than the zones, J interpolated between the zones' radiances L_k
-/// (at subdivision 1: K_t L_k per zone, zero outside zones). A purely absorbing volume with these,
-/// as Cycles renders one (emission * tau ds along the ray), gives the seed's ray integral (13):
+/// `grid_subdivision` times finer than the voxels, J interpolated between the zones' radiances L_k
+/// (at subdivision 1 without merging: K_t L_k per zone, zero outside zones). A purely absorbing
+/// volume with these, as Cycles renders one (emission * tau ds along the ray), gives the seed's ray integral (13):
 /// inside zone k, int J K_t tau ds = J (tau_in - tau_out) where J is constant. Where K_t differs
 /// per channel the density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1
 /// and absorption colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per
@@ -36,7 +36,8 @@ struct ZonalBakeResult {
 };
 
 /// bake() with media: the elements' hemi-cubes (settings.resolution) and the zones' full cubes
-/// (zone_resolution) see through the media's zones (uniform blocks merged up to max_block_level), made reciprocal (enforce_reciprocity); the rows are stored within settings.matrix_budget_bytes
+/// (zone_resolution) see through the media's zones (uniform blocks merged up to max_block_level),
+/// made reciprocal (enforce_reciprocity); the rows are stored within settings.matrix_budget_bytes
 /// (half of it for progressive refinement, which also holds R^T), else InputError. Point, spot and
 /// sun lamps are not shot through media yet, so settings.lights must be empty when there are zones
 /// (InputError); emitting polygons light media. Progress phases "form_factors", "solve"; throws Cancelled.

@@ -1,6 +1,7 @@
 /// @file zonal_grids.h
 /// @brief The grids a renderer needs to show a solved medium: `density` = K_t and `emission` =
-/// K_t J on a lattice `subdivision` times finer than the zones, J interpolated between zones.
+/// K_t J on a lattice `subdivision` times finer than the voxels (the zones before merging), J
+/// interpolated between them (voxel_radiance spreads a merged zone over its voxels first).
 ///
 /// A zone has one radiance L_k (its mean), but light in a medium can fall off fast across it; a
 /// grid that holds L_k per zone renders steps (the fog box of docs/volumes.md was 7% off Cycles
@@ -34,7 +35,7 @@ struct MediumGrids {
     std::vector<Rgb> emission;             ///< K_t J per fine cell: radiance per metre for an absorbing volume
 };
 
-/// The grids of `medium` at `subdivision` >= 1 cells per zone edge, from `radiance`: L per voxel
+/// The grids of `medium` at `subdivision` >= 1 cells per voxel edge, from `radiance`: L per voxel
 /// of the medium (read only where the voxel is a zone, K_t > 0 in some channel). At subdivision 1
 /// the grids are K_t and K_t L_k exactly. Throws InputError for subdivision < 1 or a radiance of
 /// the wrong size.
