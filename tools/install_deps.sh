@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake
   pybind11-dev python3-dev python3-numpy
-  libglm-dev libtbb-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb
+  libglm-dev libtbb-dev libembree-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb
   googletest libgtest-dev libbenchmark-dev
   blender xvfb xauth xdotool
 )

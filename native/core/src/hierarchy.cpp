@@ -1,0 +1,91 @@
+/// @file hierarchy.cpp
+/// @brief The hierarchical bake: patches and clusters, rounds of solve and refinement, the
+/// conforming leaf mesh and its corner colours (hierarchy.h).
+#include "radiosity/hierarchy.h"
+
+#include "hr_links.h"
+#include "hr_output.h"
+#include "hr_solve.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace radiosity {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+void check(const HierarchySettings& s) {
+    if (!(s.min_element_size > 0.0f) || !std::isfinite(s.min_element_size))
+        throw InputError("min_element_size must be a positive number of metres");
+    if (!(s.refine_tolerance > 0.0) || !std::isfinite(s.refine_tolerance))
+        throw InputError("refine_tolerance must be positive");
+    if (!(s.tolerance > 0.0)) throw InputError("tolerance must be positive");
+    if (s.max_iterations < 1 || s.max_rounds < 1) throw InputError("max_iterations and max_rounds must be at least 1");
+}
+
+}  // namespace
+
+HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings, const ProgressFn& progress) {
+    check(settings);
+    HierarchyResult result;
+    auto start = Clock::now();
+    result.build = build_elements(input, 0.0f, settings.limits);
+    const Elements& patches = result.build.elements;
+    hr::Tree tree(result.build, settings.lights, settings.min_element_size, settings.limits.max_elements);
+    std::vector<std::array<int32_t, 4>> patch_corners(tree.patch_count);
+    for (std::size_t p = 0; p < tree.patch_count; ++p) patch_corners[p] = tree.nodes[p].corners;
+    const hr::Visibility visibility(std::vector<Vec3>(tree.vertices.begin(), tree.vertices.end()), patch_corners,
+                                    tree.scene_size);
+    result.seconds_elements = seconds_since(start);
+
+    hr::Refiner refiner(tree, visibility);
+    hr::pull(tree);
+    start = Clock::now();
+    refiner.link_initial(progress);
+    result.seconds_links += seconds_since(start);
+
+    // Each round solves with the links it has, then refines those whose error the brighter
+    // sources now make too large; a round that refines nothing ends the bake.
+    int round = 0;
+    for (;;) {
+        start = Clock::now();
+        const hr::SweepResult sweep =
+            hr::solve_links(tree, settings.tolerance, settings.max_iterations, result.residual_history, progress);
+        result.seconds_solve += seconds_since(start);
+        result.stats.iterations += sweep.sweeps;
+        result.residual = sweep.residual;
+        result.converged = sweep.converged;
+        ++round;
+        if (round >= settings.max_rounds) break;
+        const double scale = hr::mean_reflected_radiance(tree);
+        if (!(scale > 0.0)) break;  // nothing lit: nothing to refine for
+        start = Clock::now();
+        const std::size_t refined = refiner.refine(settings.refine_tolerance * scale, progress);
+        result.seconds_links += seconds_since(start);
+        if (refined == 0) break;
+    }
+    result.stats.rounds = round;
+
+    start = Clock::now();
+    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build);
+    result.output = std::move(mesh.elements);
+    result.output_radiance = std::move(mesh.radiance);
+    result.colors = interpolate_corners(result.output, result.output_radiance, input.material, settings.hard_edge_angle);
+    result.seconds_interpolate = seconds_since(start);
+
+    HierarchyStats& stats = result.stats;
+    stats.patches = patches.size();
+    stats.clusters = tree.cluster_count;
+    stats.leaves = mesh.leaves;
+    stats.nodes = tree.nodes.size();
+    stats.links = refiner.links();
+    stats.rays = refiner.rays();
+    stats.leaf_cap_reached = tree.cap_reached();
+    stats.bytes = stats.nodes * sizeof(hr::Node) + stats.links * sizeof(hr::Link) + tree.vertices.size() * sizeof(Vec3);
+    return result;
+}
+
+}  // namespace radiosity

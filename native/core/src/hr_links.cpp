@@ -1,0 +1,404 @@
+/// @file hr_links.cpp
+/// @brief Factor and error estimates of node pairs, and link refinement (hierarchy.h).
+#include "hr_links.h"
+
+#include "parallel_rows.h"
+#include "radiosity/near_field.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace radiosity::hr {
+namespace {
+
+double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+
+uint32_t mix(uint32_t h) {  // a small integer hash (for spreading cluster samples)
+    h ^= h >> 16;
+    h *= 0x7feb352dU;
+    h ^= h >> 15;
+    h *= 0x846ca68bU;
+    h ^= h >> 16;
+    return h;
+}
+
+struct Spread {
+    double low = std::numeric_limits<double>::max(), high = 0.0, sum = 0.0;
+    int count = 0;
+    void add(double v) {
+        low = std::min(low, v);
+        high = std::max(high, v);
+        sum += v;
+        ++count;
+    }
+    double mean() const { return count ? sum / count : 0.0; }
+    double width() const { return count ? high - low : 0.0; }
+};
+
+/// How a transfer sampled at an element's probes (element_probes: inset corners, then the
+/// centre) varies over it: its whole spread, and its departure from linear (the centre against
+/// the corners' mean, and a quad's twist), which is all a leaf's interpolated corners miss.
+struct Variation {
+    double spread = 0.0, nonlinear = 0.0;
+};
+
+Variation variation(const double* at, int probe_count) {
+    Variation v;
+    const auto [low, high] = std::minmax_element(at, at + probe_count);
+    v.spread = *high - *low;
+    const int corners = probe_count - 1;
+    double mean = 0.0;
+    for (int k = 0; k < corners; ++k) mean += at[k] / corners;
+    v.nonlinear = 2.0 * std::abs(at[corners] - mean);
+    if (corners == 4) v.nonlinear += std::abs(at[0] - at[1] + at[2] - at[3]);
+    v.nonlinear = std::min(v.nonlinear, v.spread);
+    return v;
+}
+
+}  // namespace
+
+Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
+    switch (source.kind) {
+        case Kind::PointLamp: return tree.lights.points[source.lamp].intensity;  // profile: in the factor
+        case Kind::Sun: return tree.lights.suns[source.lamp].irradiance;
+        default: break;
+    }
+    const glm::dvec3 direction(u);
+    Rgb out;
+    for (int c = 0; c < 3; ++c) {
+        const glm::dvec3& m = source.emitter.moment[c];
+        out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, source.emitter.power[c] - glm::length(m)) / 4.0;
+    }
+    return out;
+}
+
+int Refiner::cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const {
+    // Each point is a patch centre reached by walking down from c, taking each child with odds
+    // proportional to its power (where the light comes from) or its area (where it lands).
+    auto weight = [&](const Node& n) { return by_power ? max_channel(n.emitter.power) : double(n.area); };
+    for (int k = 0; k < 4; ++k) {
+        const Node* n = &c;
+        for (uint32_t h = mix(seed + 0x9e3779b9U * (k + 1)); n->kind == Kind::Cluster; h = mix(h)) {
+            const Node& a = tree_.nodes[child(*n, 0)];
+            const Node& b = tree_.nodes[child(*n, 1)];
+            double wa = weight(a), wb = weight(b);
+            if (!(wa + wb > 0.0)) wa = a.area, wb = b.area;
+            n = (h / 4294967296.0) * (wa + wb) < wa ? &a : &b;
+        }
+        points[k] = n->centre;
+    }
+    return 4;
+}
+
+Refiner::Estimate Refiner::estimate(int32_t receiver, int32_t source) const {
+    const Node& r = tree_.nodes[receiver];
+    const Node& s = tree_.nodes[source];
+    Estimate e = r.is_element() && s.is_element() ? estimate_elements(r, s) : estimate_point_source(r, s);
+    e.link.source = source;
+    return e;
+}
+
+Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const {
+    Estimate e;
+    std::array<Vec3, 4> P, C;
+    const int np = element_samples(tree_, r, P);
+    const int nc = element_corners(tree_, s, C);
+    glm::dvec3 polygon[4];
+    for (int k = 0; k < nc; ++k) polygon[k] = C[k];
+    auto factor_at = [&](const Vec3& x) {
+        return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
+    };
+    Spread F;  // the mean over r (Gauss points)
+    for (int k = 0; k < np; ++k) F.add(factor_at(P[k]));
+    std::array<Vec3, 5> probes;
+    std::array<double, 5> at{};
+    const int probe_count = element_probes(tree_, r, probes);
+    for (int k = 0; k < probe_count; ++k) at[k] = factor_at(probes[k]);
+    if (!(F.high > 0.0) && !(*std::max_element(at.begin(), at.begin() + probe_count) > 0.0))
+        return e;  // s is behind r, or r behind s: no light either way
+
+    // Visibility from jittered points, so that a fraction errs at random, not the same way on
+    // every link (fixed points would see the same gap or the same occluder every time).
+    const uint32_t seed = mix(static_cast<uint32_t>(&r - &tree_.nodes[0]) * 73856093U ^
+                              static_cast<uint32_t>(&s - &tree_.nodes[0]) * 19349663U);
+    std::array<Vec3, 16> from, to;
+    // Each ray counts with the kernel cos cos / d^2 of its ends, so that parts of s behind r's
+    // plane (or of r behind s's) neither hide nor show anything.
+    auto visible_fraction = [&](int rays, int stride, bool& partial) {
+        double seen = 0.0, total = 0.0;
+        int hits = 0, misses = 0;
+        for (int k = 0; k < rays; ++k) {
+            const Vec3 &a = from[k], &b = to[(stride * k + 1) % rays];
+            const Vec3 d = b - a;
+            const float d2 = glm::dot(d, d);
+            const double kernel = d2 > 0.0f ? std::max(0.0f, glm::dot(r.normal, d)) * std::max(0.0f, -glm::dot(s.normal, d)) / (d2 * d2) : 0.0;
+            if (!(kernel > 0.0)) continue;
+            const bool clear = visibility_.clear(a, b);
+            (clear ? hits : misses) += 1;
+            seen += clear ? kernel : 0.0;
+            total += kernel;
+        }
+        partial = hits > 0 && misses > 0;
+        return total > 0.0 ? seen / total : 1.0;  // no ray found the front: F is near 0 anyway
+    };
+    // Coarse receivers get 16 rays (a small occluder hides among 4), the finest 4, or 16 when
+    // those disagree.
+    const int grid = tree_.can_split(r) ? 4 : 2;
+    jittered_points(tree_, r, grid, seed, from.data());
+    jittered_points(tree_, s, grid, mix(seed), to.data());
+    bool partial = false;
+    int rays = grid * grid;
+    double visible = visible_fraction(rays, grid == 4 ? 5 : 1, partial);
+    // A partly hidden source over a receiver that can split: split the receiver, to find the
+    // shadow's edge on it. Over one that cannot: 16 rays for a finer fraction, whose remaining
+    // doubt (two binomial deviations) may still ask to split the source.
+    double hidden_doubt = partial ? 1.0 : 0.0;
+    if (partial && !tree_.can_split(r)) {
+        jittered_points(tree_, r, 4, mix(seed + 1), from.data());
+        jittered_points(tree_, s, 4, mix(seed + 2), to.data());
+        rays = 16;
+        visible = visible_fraction(rays, 5, partial);
+        hidden_doubt = 2.0 * std::sqrt(visible * (1.0 - visible) / rays);
+    }
+    e.rays = rays;
+    e.link.factor = static_cast<float>(F.mean() * visible);
+    // Only error that splitting can still reduce counts: how the factor varies over a receiver
+    // too small to split stays; a partly hidden source can still be split to find the shadow.
+    const double rho = max_channel(r.reflectance);
+    const Variation v = tree_.can_split(r) ? variation(at.data(), probe_count) : Variation{};
+    e.link.uncertainty = static_cast<float>(rho * (v.nonlinear + hidden_doubt * F.mean()));
+    e.link.steps = static_cast<float>(rho * (v.spread - v.nonlinear));
+    // Where s is partly hidden or large and near, which of its parts r sees matters: the mean
+    // radiance errs by up to the spread of s's radiance (the floor under a block is dark, the
+    // part in view is not). Four rays can miss an occluder, so nearness counts too (its cube:
+    // measured on the Cornell box, the best accuracy for the links among 1, 2 and 3 powers).
+    const double distance = glm::length(s.centre - r.centre);
+    const double near = distance > 0.0 ? std::min(1.0, 2.0 * s.radius / distance) : 1.0;
+    if (tree_.can_split(s))
+        e.link.source_doubt = static_cast<float>(max_channel(r.reflectance) * F.mean() * (partial ? 1.0 : near * near * near));
+    e.link.direction = glm::normalize(s.centre - r.centre);
+    e.useful = e.link.factor > 0.0f || e.link.uncertainty > 0.0f || e.link.source_doubt > 0.0f || e.link.steps > 0.0f;
+    return e;
+}
+
+Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) const {
+    Estimate e;
+    const bool sun = s.kind == Kind::Sun;
+    const uint32_t seed = mix(static_cast<uint32_t>(&r - &tree_.nodes[0]) * 73856093U ^
+                              static_cast<uint32_t>(&s - &tree_.nodes[0]) * 19349663U);
+    std::array<Vec3, 4> P, Q;
+    const int np = r.is_element() ? element_samples(tree_, r, P) : cluster_samples(r, seed, false, P);
+    int nq = 1;
+    if (s.kind == Kind::Cluster) nq = cluster_samples(s, seed ^ 0x5bd1e995U, true, Q);
+    else if (s.kind == Kind::Element) nq = element_samples(tree_, s, Q);
+    else Q[0] = s.centre;
+
+    const PointLight* lamp = s.kind == Kind::PointLamp ? &tree_.lights.points[s.lamp] : nullptr;
+    auto transfer_at = [&](const Vec3& x) {  // per unit of the source's intensity, point to point
+        const Vec3 d = sun ? -s.normal : s.centre - x;
+        const double distance2 = sun ? 1.0 : glm::dot(d, d);
+        if (!(distance2 > 0.0)) return std::numeric_limits<double>::infinity();
+        const Vec3 u = sun ? d : d / std::sqrt(float(distance2));
+        double value = (r.is_element() ? std::max(0.0f, glm::dot(r.normal, u)) : 1.0) / (M_PI * distance2);
+        if (lamp) value *= spot_profile(*lamp, -u);
+        if (s.is_element()) value *= glm::dot(s.normal, -u) > 0.0f ? 1.0 : 0.0;  // an element lights its front
+        return value;
+    };
+    Spread g;
+    for (int k = 0; k < np; ++k) g.add(transfer_at(P[k]));
+    std::array<double, 5> at{};
+    int probe_count = 0;
+    if (r.is_element()) {
+        std::array<Vec3, 5> probes;
+        probe_count = element_probes(tree_, r, probes);
+        for (int k = 0; k < probe_count; ++k) at[k] = transfer_at(probes[k]);
+    }
+    const double highest = std::max(g.high, probe_count ? *std::max_element(at.begin(), at.begin() + probe_count) : 0.0);
+    if (!std::isfinite(highest)) {  // a point source on the receiver: split, or no link
+        e.useful = true;
+        e.link.uncertainty = std::numeric_limits<float>::max();
+        return e;
+    }
+    if (!(highest > 0.0)) return e;
+
+    // Coarse element receivers get 16 rays from jittered points (a small occluder hides among 4).
+    std::array<Vec3, 16> from;
+    int from_count = np;
+    if (r.is_element() && tree_.can_split(r)) {
+        jittered_points(tree_, r, 4, seed, from.data());
+        from_count = 16;
+    } else {
+        std::copy(P.begin(), P.begin() + np, from.begin());
+    }
+    const int rays = std::max(from_count, nq);
+    int clear = 0;
+    for (int k = 0; k < rays; ++k) {
+        const Vec3& a = from[k % from_count];
+        clear += sun ? visibility_.clear_towards(a, -s.normal) : visibility_.clear(a, Q[(k + 1) % nq]);
+    }
+    e.rays = rays;
+    const double visible = double(clear) / rays;
+    const bool partial = clear > 0 && clear < rays;
+    // Treating both ends as points is off by about their size over the distance between them;
+    // closer than twice their size, the points say nothing: such pairs must split.
+    const double distance = sun ? std::numeric_limits<double>::infinity() : glm::length(s.centre - r.centre);
+    auto extent = [](const Node& n) { return n.kind == Kind::Cluster || n.is_element() ? double(n.radius) : 0.0; };
+    const double r_extent = r.is_element() ? 0.0 : extent(r), s_extent = extent(s);
+    e.source_side = s_extent >= r_extent && s_extent > 0.0;
+    if (distance < 2.0 * (r_extent + s_extent)) {
+        e.useful = true;
+        e.link.uncertainty = std::numeric_limits<float>::max();
+        return e;
+    }
+    const Variation v = probe_count && tree_.can_split(r) ? variation(at.data(), probe_count) : Variation{};
+    e.link.steps = static_cast<float>(max_channel(r.reflectance) * (v.spread - v.nonlinear));
+    const double receiver_part = v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0));
+    const double source_part = g.mean() * 2.0 * s_extent / distance;
+    e.source_side = source_part > receiver_part;
+    e.link.factor = static_cast<float>(g.mean() * visible);
+    e.link.uncertainty = static_cast<float>(max_channel(r.reflectance) * (receiver_part + source_part));
+    e.link.direction = sun ? -s.normal : glm::normalize(s.centre - r.centre);
+    e.useful = true;
+    return e;
+}
+
+double Refiner::source_error(const Link& link) const {
+    const Node& s = tree_.nodes[link.source];
+    return double(link.source_doubt) * double(s.radiance_high - s.radiance_low);
+}
+
+double Refiner::error(const Node& receiver, const Link& link, bool receiver_split) const {
+    const Node& s = tree_.nodes[link.source];
+    const double doubt = double(link.uncertainty) + (receiver_split ? double(link.steps) : 0.0);
+    if (receiver.is_element() && s.is_element()) return doubt * max_channel(s.radiance) + source_error(link);
+    // Intensity towards the centre direction is itself an estimate (other parts of the receiver
+    // see the source from elsewhere): bound the error by at least a quarter of the source's power,
+    // its mean intensity over all directions.
+    double strength = max_channel(intensity(tree_, s, -link.direction));
+    if (s.kind == Kind::Cluster || s.is_element()) strength = std::max(strength, max_channel(s.emitter.power) / 4.0);
+    return doubt * strength;
+}
+
+void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& out, std::size_t& rays, bool split) {
+    const Estimate e = estimate(receiver, source);
+    rays += e.rays;
+    if (!e.useful) return;
+    const Node& r = tree_.nodes[receiver];
+    const Node& s = tree_.nodes[source];
+    // Pairs too close for their estimate split whatever the threshold (even before the first
+    // solve, when every source but the lamps and emitters is still dark).
+    const bool must_split = e.link.uncertainty == std::numeric_limits<float>::max();
+    const double link_error = must_split ? 0.0 : error(r, e.link, tree_.has_children(receiver));
+    if (split || must_split || link_error > threshold) {
+        // Split the end the error comes from (an element's factor towards a polygon is exact over
+        // the source, so only the receiver's side errs); the other end only if that one cannot.
+        const bool r_splits = r.kind == Kind::Cluster || tree_.can_split(r);
+        const bool s_splits = s.kind == Kind::Cluster || tree_.can_split(s);
+        const bool source_side = e.source_side || source_error(e.link) > link_error - source_error(e.link);
+        const bool source_first = source_side || !r_splits;
+        for (const bool split_source : {source_first, !source_first}) {
+            if (split_source && s_splits && (s.kind == Kind::Cluster || tree_.subdivide(source))) {
+                for (int k = 0; k < s.child_count; ++k) link(receiver, child(s, k), threshold, out, rays);
+                return;
+            }
+            if (!split_source && r_splits && (r.kind == Kind::Cluster || tree_.subdivide(receiver))) {
+                for (int k = 0; k < r.child_count; ++k) link(child(r, k), source, threshold, out, rays);
+                return;
+            }
+        }
+    }
+    out.emplace_back(receiver, e.link);
+}
+
+void Refiner::link_pair_within(int32_t cluster, double threshold, Output& out, std::size_t& rays) {
+    const Node& c = tree_.nodes[cluster];
+    if (c.kind != Kind::Cluster) return;
+    const int32_t a = child(c, 0), b = child(c, 1);
+    link(a, b, threshold, out, rays);
+    link(b, a, threshold, out, rays);
+}
+
+void Refiner::link_initial(const ProgressFn& progress) {
+    // Every cluster's two children see each other; together these pairs cover every pair of
+    // patches once in each direction. Lamps light the whole scene through the root.
+    std::vector<int32_t> jobs;
+    for (std::size_t n = tree_.patch_count; n < tree_.patch_count + tree_.cluster_count; ++n)
+        jobs.push_back(static_cast<int32_t>(n));
+    for (int32_t lamp : tree_.lamp_nodes) jobs.push_back(-1 - lamp);
+    tbb::enumerable_thread_specific<Output> outputs;
+    tbb::enumerable_thread_specific<std::size_t> rays(0);
+    const double no_refinement = std::numeric_limits<double>::infinity();
+    detail::parallel_rows(jobs.size(), 64, 0, progress, [&](std::size_t i) {
+        if (jobs[i] >= 0) link_pair_within(jobs[i], no_refinement, outputs.local(), rays.local());
+        else link(tree_.root, -1 - jobs[i], no_refinement, outputs.local(), rays.local());
+        return true;
+    });
+    for (auto& output : outputs)
+        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
+    for (std::size_t r : rays) rays_ += r;
+}
+
+std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
+    std::vector<int32_t> receivers;
+    for (std::size_t n = 0; n < tree_.nodes.size(); ++n)
+        if (!tree_.nodes[n].links.empty()) receivers.push_back(static_cast<int32_t>(n));
+    std::vector<uint8_t> split(receivers.size());  // taken before any thread splits more
+    for (std::size_t i = 0; i < receivers.size(); ++i) split[i] = tree_.nodes[receivers[i]].child_count > 0;
+    tbb::enumerable_thread_specific<Output> outputs;
+    tbb::enumerable_thread_specific<std::size_t> rays(0), refined(0);
+    detail::parallel_rows(receivers.size(), 16, 0, progress, [&](std::size_t i) {
+        const int32_t receiver = receivers[i];
+        Node& r = tree_.nodes[receiver];
+        // The errors of a receiver's links add up at its leaves (they often err the same way, as
+        // near a corner), so it is their sum that must stay below the threshold: the largest
+        // are refined until the rest fit.
+        std::vector<std::pair<double, std::size_t>> errors;
+        double total = 0.0;
+        for (std::size_t k = 0; k < r.links.size(); ++k) {
+            errors.emplace_back(error(r, r.links[k], split[i]), k);
+            total += errors.back().first;
+        }
+        if (total <= threshold) return true;
+        std::sort(errors.begin(), errors.end(), std::greater<>());
+        std::vector<bool> refine_link(r.links.size(), false);
+        for (const auto& [link_error, k] : errors) {
+            if (total <= threshold) break;
+            const Node& s = tree_.nodes[r.links[k].source];
+            if (r.kind == Kind::Cluster || tree_.can_split(r) || s.kind == Kind::Cluster || tree_.can_split(s)) {
+                refine_link[k] = true;
+                total -= link_error;
+            }
+        }
+        std::vector<Link> kept;
+        for (std::size_t k = 0; k < r.links.size(); ++k) {
+            if (!refine_link[k]) {
+                kept.push_back(r.links[k]);
+                continue;
+            }
+            ++refined.local();
+            link(receiver, r.links[k].source, threshold, outputs.local(), rays.local(), true);
+        }
+        r.links = std::move(kept);  // only this task touches r's own list; new links wait below
+        return true;
+    });
+    for (auto& output : outputs)
+        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
+    for (std::size_t r : rays) rays_ += r;
+    std::size_t count = 0;
+    for (std::size_t r : refined) count += r;
+    return count;
+}
+
+std::size_t Refiner::links() const {
+    std::size_t count = 0;
+    for (const Node& n : tree_.nodes) count += n.links.size();
+    return count;
+}
+
+}  // namespace radiosity::hr

@@ -1,0 +1,58 @@
+/// @file hr_links.h
+/// @brief Links of hierarchical radiosity (internal): the factor and error estimate of a pair of
+/// nodes, and the refinement that replaces a link by links between children (hierarchy.h).
+#pragma once
+
+#include "hr_tree.h"
+#include "hr_visibility.h"
+
+namespace radiosity::hr {
+
+/// A source's intensity towards `u` (unit, leaving the source): clusters and elements by their
+/// emitter (hierarchy.h), point lamps by their profile; a sun's irradiance.
+Rgb intensity(const Tree& tree, const Node& source, const Vec3& u);
+
+class Refiner {
+public:
+    Refiner(Tree& tree, const Visibility& visibility) : tree_(tree), visibility_(visibility) {}
+
+    /// The first links: every pair of sibling subtrees and every lamp with the root, at the
+    /// coarsest level (sources are dark before the first solve, so nothing asks for more).
+    void link_initial(const ProgressFn& progress);
+    /// Replaces every link whose error now exceeds `threshold` (radiance) by links between
+    /// children, as deep as the estimates ask. Returns how many links were refined.
+    std::size_t refine(double threshold, const ProgressFn& progress);
+
+    std::size_t rays() const { return rays_; }
+    std::size_t links() const;
+
+private:
+    struct Estimate {
+        Link link;
+        bool useful = false;  ///< carries light now or may after refinement
+        /// Most of the uncertainty comes from treating the source as a point (split the source),
+        /// not from how the transfer varies over the receiver or is partly hidden (split it).
+        bool source_side = false;
+        int rays = 0;
+    };
+    using Output = std::vector<std::pair<int32_t, Link>>;
+
+    Estimate estimate(int32_t receiver, int32_t source) const;
+    Estimate estimate_elements(const Node& r, const Node& s) const;
+    Estimate estimate_point_source(const Node& r, const Node& s) const;
+    /// The link's estimated radiance error; `receiver_split`: the receiver has children.
+    double error(const Node& receiver, const Link& link, bool receiver_split) const;
+    double source_error(const Link& link) const;  ///< the part of error() splitting the source reduces
+    /// Links `receiver` to `source`, splitting whichever is larger while the error is too large
+    /// (and at least once when `split`).
+    void link(int32_t receiver, int32_t source, double threshold, Output& out, std::size_t& rays, bool split = false);
+    void link_pair_within(int32_t cluster, double threshold, Output& out, std::size_t& rays);
+    /// Sample points of a cluster: centres of its patches, picked by power or by area.
+    int cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const;
+
+    Tree& tree_;
+    const Visibility& visibility_;
+    std::size_t rays_ = 0;
+};
+
+}  // namespace radiosity::hr

@@ -1,0 +1,92 @@
+/// @file hr_output.cpp
+/// @brief Leaves to a conforming mesh (hr_output.h).
+#include "hr_output.h"
+
+#include <glm/geometric.hpp>
+
+namespace radiosity::hr {
+namespace {
+
+/// Appends the vertices along a -> b, from a up to but without b, where neighbours split it.
+void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>& out) {
+    const int32_t m = tree.existing_midpoint(a, b);
+    if (m < 0) {
+        out.push_back(a);
+        return;
+    }
+    edge_vertices(tree, a, m, out);
+    edge_vertices(tree, m, b, out);
+}
+
+class MeshWriter {
+public:
+    MeshWriter(const Tree& tree, const BuildResult& build, LeafMesh& mesh) : tree_(tree), build_(build), mesh_(mesh) {}
+
+    void leaf(const Node& n) {
+        ++mesh_.leaves;
+        const int count = n.is_triangle() ? 3 : 4;
+        boundary_.clear();
+        for (int k = 0; k < count; ++k) edge_vertices(tree_, n.corners[k], n.corners[(k + 1) % count], boundary_);
+        if (static_cast<int>(boundary_.size()) == count) {
+            add(n, n.corners);
+            return;
+        }
+        Elements& out = mesh_.elements;
+        const auto centre = static_cast<int32_t>(out.vertices.size());
+        out.vertices.push_back(n.centre);
+        for (std::size_t k = 0; k < boundary_.size(); ++k)
+            add(n, {centre, boundary_[k], boundary_[(k + 1) % boundary_.size()], -1});
+    }
+
+private:
+    void add(const Node& n, const std::array<int32_t, 4>& corners) {
+        Elements& out = mesh_.elements;
+        const int count = corners[3] < 0 ? 3 : 4;
+        Vec3 centre(0.0f);
+        glm::dvec3 twice(0.0);
+        for (int k = 0; k < count; ++k) {
+            const Vec3& p = out.vertices[corners[k]];
+            centre += p / float(count);
+            if (k >= 1 && k + 1 < count)
+                twice += glm::cross(glm::dvec3(p - out.vertices[corners[0]]),
+                                    glm::dvec3(out.vertices[corners[k + 1]] - out.vertices[corners[0]]));
+        }
+        out.corners.push_back(corners);
+        out.centre.push_back(centre);
+        out.normal.push_back(n.normal);
+        out.area.push_back(static_cast<float>(0.5 * glm::length(twice)));
+        out.polygon.push_back(build_.elements.polygon[n.patch]);
+        out.reflectance.push_back(n.reflectance);
+        out.emission.push_back(n.emission);
+        mesh_.radiance.push_back(n.radiance);
+    }
+
+    const Tree& tree_;
+    const BuildResult& build_;
+    LeafMesh& mesh_;
+    std::vector<int32_t> boundary_;
+};
+
+void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
+    const Node& n = tree.nodes[id];
+    if (n.is_leaf()) {
+        writer.leaf(n);
+        return;
+    }
+    for (int k = 0; k < n.child_count; ++k) visit_leaves(tree, child(n, k), writer);
+}
+
+}  // namespace
+
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build) {
+    LeafMesh mesh;
+    Elements& out = mesh.elements;
+    out.vertices.assign(tree.vertices.begin(), tree.vertices.end());
+    out.corner_vertex.reserve(build.elements.corner_vertex.size());
+    for (int32_t v : build.elements.corner_vertex) out.corner_vertex.push_back(v < 0 ? -1 : tree.patch_vertex[v]);
+    MeshWriter writer(tree, build, mesh);
+    for (std::size_t p = 0; p < tree.patch_count; ++p) visit_leaves(tree, static_cast<int32_t>(p), writer);
+    return mesh;
+}
+
+}  // namespace radiosity::hr

@@ -1,0 +1,21 @@
+/// @file hr_output.h
+/// @brief The leaves of hierarchical radiosity as a mesh without cracks (internal).
+#pragma once
+
+#include "hr_tree.h"
+
+namespace radiosity::hr {
+
+struct LeafMesh {
+    Elements elements;          ///< one element per leaf, or a fan of triangles (see below)
+    std::vector<Rgb> radiance;  ///< per element: its leaf's radiance
+    std::size_t leaves = 0;
+};
+
+/// Every leaf, with the vertices its finer neighbours put on its edges: a leaf without any keeps
+/// its corners; one with some becomes a fan of triangles around its centre, so that neighbours
+/// share every vertex on their common edge (no T-vertices). Input corners map to the welded
+/// patch vertices (Elements::corner_vertex), so original meshes get their colours too.
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build);
+
+}  // namespace radiosity::hr

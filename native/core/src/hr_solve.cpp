@@ -1,0 +1,164 @@
+/// @file hr_solve.cpp
+/// @brief Gather and push-pull sweeps of hierarchical radiosity (hr_solve.h).
+#include "hr_solve.h"
+
+#include "hr_links.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace radiosity::hr {
+namespace {
+
+/// Light binned by direction, read by a surface with normal n: exact for light from within the
+/// octant around n, an approximation (never negative) otherwise.
+Rgb read_cube(const AmbientCube& cube, const Vec3& n) {
+    Rgb g(0.0);
+    for (int a = 0; a < 3; ++a) g += cube[2 * a + (n[a] >= 0.0f ? 0 : 1)] * double(std::abs(n[a]));
+    return g;
+}
+
+void deposit(AmbientCube& cube, const Vec3& direction, const Rgb& value) {
+    for (int a = 0; a < 3; ++a) cube[2 * a + (direction[a] >= 0.0f ? 0 : 1)] += value * double(std::abs(direction[a]));
+}
+
+void gather(Tree& tree) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tree.nodes.size(), 512), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            Node& r = tree.nodes[i];
+            r.gathered = Rgb(0.0);
+            r.cube = AmbientCube{};
+            for (const Link& l : r.links) {
+                const Node& s = tree.nodes[l.source];
+                if (r.is_element() && s.is_element()) {
+                    r.gathered += double(l.factor) * s.radiance;
+                    continue;
+                }
+                const Rgb value = double(l.factor) * intensity(tree, s, -l.direction);
+                if (r.is_element()) r.gathered += value;
+                else deposit(r.cube, l.direction, value);
+            }
+        }
+    });
+}
+
+struct Totals {
+    double change = 0.0, total = 0.0;
+};
+
+void set_emitter(Node& n) {
+    n.emitter.power = n.radiance * double(n.area);
+    for (int c = 0; c < 3; ++c) n.emitter.moment[c] = n.emitter.power[c] * glm::dvec3(n.normal);
+}
+
+double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+
+void set_range(const Tree& tree, Node& n) {
+    if (n.is_leaf()) {
+        n.radiance_low = n.radiance_high = static_cast<float>(max_channel(n.radiance));
+        return;
+    }
+    n.radiance_low = std::numeric_limits<float>::max();
+    n.radiance_high = 0.0f;
+    for (int k = 0; k < n.child_count; ++k) {
+        const Node& c = tree.nodes[child(n, k)];
+        n.radiance_low = std::min(n.radiance_low, c.radiance_low);
+        n.radiance_high = std::max(n.radiance_high, c.radiance_high);
+    }
+}
+
+/// Pushes what the ancestors gathered (`cube` for clusters, `gathered` for elements) down to the
+/// leaves, updates them when `update`, and pulls radiance and emitters back up.
+void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb& gathered_above, bool update,
+               Totals& totals) {
+    Node& n = tree.nodes[id];
+    if (n.kind == Kind::Cluster) {
+        AmbientCube cube = n.cube;
+        for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
+        n.emitter = Emitter{};
+        for (int k = 0; k < n.child_count; ++k) {
+            const int32_t c = child(n, k);
+            const Node& below = tree.nodes[c];
+            if (below.is_element()) push_pull(tree, c, AmbientCube{}, read_cube(cube, below.normal), update, totals);
+            else push_pull(tree, c, cube, Rgb(0.0), update, totals);
+            n.emitter.power += below.emitter.power;
+            for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += below.emitter.moment[ch];
+        }
+        return;
+    }
+    const Rgb gathered = gathered_above + n.gathered;
+    if (n.is_leaf()) {
+        if (update) {
+            const Rgb next = n.emission + n.reflectance * gathered;
+            const Rgb change = glm::abs(next - n.radiance);
+            totals.change += double(n.area) * (change.r + change.g + change.b);
+            totals.total += double(n.area) * (next.r + next.g + next.b);
+            n.radiance = next;
+        }
+    } else {
+        Rgb sum(0.0);
+        double area = 0.0;
+        for (int k = 0; k < n.child_count; ++k) {
+            const int32_t c = child(n, k);
+            push_pull(tree, c, AmbientCube{}, gathered, update, totals);
+            sum += double(tree.nodes[c].area) * tree.nodes[c].radiance;
+            area += tree.nodes[c].area;
+        }
+        n.radiance = sum / area;
+    }
+    set_emitter(n);
+    set_range(tree, n);
+}
+
+}  // namespace
+
+void pull(Tree& tree) {
+    Totals unused;
+    if (tree.root >= 0) push_pull(tree, tree.root, AmbientCube{}, Rgb(0.0), false, unused);
+}
+
+SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vector<double>& history,
+                        const ProgressFn& progress) {
+    SweepResult result;
+    if (tree.root < 0) {
+        result.converged = true;
+        return result;
+    }
+    while (result.sweeps < max_sweeps) {
+        gather(tree);
+        Totals totals;
+        push_pull(tree, tree.root, AmbientCube{}, Rgb(0.0), true, totals);
+        ++result.sweeps;
+        result.residual = totals.total > 0.0 ? totals.change / totals.total : 0.0;
+        history.push_back(result.residual);
+        result.converged = result.residual <= tolerance;
+        if (progress) {
+            Progress p;
+            p.phase = "solve";
+            p.done = static_cast<std::size_t>(result.sweeps);
+            p.total = static_cast<std::size_t>(max_sweeps);
+            p.residual = result.residual;
+            if (!progress(p)) throw Cancelled();
+        }
+        if (result.converged) break;
+    }
+    return result;
+}
+
+double mean_reflected_radiance(const Tree& tree) {
+    double power = 0.0, area = 0.0;
+    for (std::size_t i = 0; i < tree.patch_count; ++i) {
+        const Node& n = tree.nodes[i];
+        power += double(n.area) * max_channel(glm::max(n.radiance - n.emission, Rgb(0.0)));
+        area += n.area;
+    }
+    return area > 0.0 ? power / area : 0.0;
+}
+
+}  // namespace radiosity::hr

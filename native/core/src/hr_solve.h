@@ -1,0 +1,29 @@
+/// @file hr_solve.h
+/// @brief Solves the linked system of hierarchical radiosity (internal): Jacobi sweeps of
+/// gather (every node sums its links) and push-pull (gathered light pushed down to the leaves,
+/// L = E + rho G there, radiance pulled up as area means and emitters as sums).
+#pragma once
+
+#include "hr_tree.h"
+
+namespace radiosity::hr {
+
+struct SweepResult {
+    int sweeps = 0;
+    double residual = 0.0;  ///< sum A |L_new - L_old| / sum A |L_new| (leaves, all channels)
+    bool converged = false;
+};
+
+/// Pull only: leaves keep their radiance, parents and emitters follow (before the first links).
+void pull(Tree& tree);
+
+/// Sweeps until the residual falls below `tolerance` or `max_sweeps`; appends each residual to
+/// `history`. Progress phase "solve"; throws Cancelled.
+SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vector<double>& history,
+                        const ProgressFn& progress);
+
+/// Area-weighted mean reflected radiance L - E of the scene, largest channel: the refinement's
+/// scale (what the bake shows; emitters would swamp it, a bright small lamp most of all).
+double mean_reflected_radiance(const Tree& tree);
+
+}  // namespace radiosity::hr

@@ -1,0 +1,144 @@
+/// @file hr_tree.h
+/// @brief The node tree of hierarchical radiosity (internal): clusters above the patches,
+/// quadtree elements below them, lamps beside them, and the links each node gathers along.
+#pragma once
+
+#include "radiosity/hierarchy.h"
+
+#include <tbb/concurrent_vector.h>
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <vector>
+
+namespace radiosity::hr {
+
+enum class Kind : uint8_t { Element, Cluster, PointLamp, Sun };
+
+/// Light gathered by a receiver from one source. Element from element: G += factor * L_source.
+/// Otherwise the source is a point source seen along `direction` (receiver to source, unit):
+/// G += factor * intensity(source, -direction), where `factor` holds V cos_r / (pi r^2) (no cos_r
+/// for cluster receivers, which bin it by direction; 1/pi instead of 1/(pi r^2) for suns).
+struct Link {
+    int32_t source = -1;
+    float factor = 0.0f;
+    /// The link's radiance error per unit of the source's strength (its radiance, or its intensity
+    /// towards the receiver), reflectance included: refinement compares it with the threshold
+    /// again whenever the sources brighten, without tracing rays anew.
+    float uncertainty = 0.0f;
+    /// Element sources: the error per unit of how much the source's radiance varies over it
+    /// (the link uses its mean, and where it is partly hidden or near, the mean misleads).
+    float source_doubt = 0.0f;
+    /// Added to `uncertainty` once the receiver has children: the link's light reaches them all
+    /// alike, so a gradient under it shows as steps (a leaf's corners interpolate it instead).
+    float steps = 0.0f;
+    Vec3 direction{0.0f};
+};
+
+/// Per channel: max(0, M . u) + (S - |M|) / 4 is a cluster's intensity towards u (hierarchy.h).
+struct Emitter {
+    Rgb power{0.0};                 ///< S = sum L A
+    std::array<glm::dvec3, 3> moment{};  ///< M = sum L A n, per channel
+};
+
+/// Six direction bins (+x, -x, +y, -y, +z, -z) of gathered light at normal incidence.
+using AmbientCube = std::array<Rgb, 6>;
+
+struct Node {
+    Kind kind = Kind::Element;
+    int32_t parent = -1;
+    int32_t first_child = -1;       ///< elements: 4 contiguous children; clusters: 2, see child()
+    int32_t second_child = -1;      ///< clusters only
+    int32_t child_count = 0;
+    int32_t lamp = -1;              ///< index into Lights::points or ::suns for lamp nodes
+    // Geometry (fixed once the node exists).
+    std::array<int32_t, 4> corners{-1, -1, -1, -1};  ///< elements: vertex ids, [3] = -1 for triangles
+    int32_t patch = -1;             ///< elements: the patch they split from (its polygon, material)
+    int32_t patch_begin = 0, patch_end = 0;  ///< clusters: range of Tree::patch_order
+    Vec3 centre{0.0f}, normal{0.0f};
+    float area = 0.0f;
+    float radius = 0.0f;            ///< bounding sphere about `centre`
+    float longest_edge = 0.0f;
+    Rgb reflectance{0.0}, emission{0.0};  ///< clusters: the largest reflectance inside
+    // Solution.
+    Rgb radiance{0.0};              ///< elements: mean leaving radiance
+    float radiance_low = 0.0f, radiance_high = 0.0f;  ///< elements: range of the leaves below (largest channel)
+    Emitter emitter;                ///< pulled up from the leaves
+    Rgb gathered{0.0};              ///< elements: this sweep's sum over links
+    AmbientCube cube{};             ///< clusters: this sweep's sum over links, binned
+    std::vector<Link> links;        ///< what this node gathers from
+
+    bool is_element() const { return kind == Kind::Element; }
+    bool is_leaf() const { return child_count == 0; }
+    bool is_triangle() const { return corners[3] < 0; }
+};
+
+/// Child k of a node with children.
+inline int32_t child(const Node& n, int k) {
+    return n.kind == Kind::Cluster && k == 1 ? n.second_child : n.first_child + k;
+}
+
+/// Nodes and vertices may grow from several threads at once (refinement): both live in
+/// concurrent vectors, whose elements never move.
+class Tree {
+public:
+    /// Patches from `build` (node i = patch i), clusters above them, one node per lamp.
+    Tree(const BuildResult& build, const Lights& lights, float min_element_size, std::size_t max_leaves);
+
+    tbb::concurrent_vector<Node> nodes;
+    tbb::concurrent_vector<Vec3> vertices;  ///< welded patch vertices, then midpoints and centres
+    std::vector<int32_t> patch_order;       ///< patches in cluster order
+    std::vector<int32_t> patch_vertex;      ///< build vertex -> welded vertex id
+    const Lights& lights;
+    int32_t root = -1;
+    std::size_t patch_count = 0, cluster_count = 0;
+    std::vector<int32_t> lamp_nodes;
+    float scene_size = 0.0f;                ///< bounding box diagonal, metres
+
+    /// Splits element `e` into four (once; safe to call from several threads). Returns false when
+    /// it is too small to split (its longest edge is below the minimum element size).
+    bool subdivide(int32_t e);
+    bool can_split(const Node& n) const;
+    /// Whether element `e` has been split (safe while other threads split).
+    bool has_children(int32_t e);
+    /// The vertex halfway along a - b, made once and shared by both elements at that edge.
+    int32_t midpoint(int32_t a, int32_t b);
+    /// The vertex at a - b's midpoint if an element split that edge, else -1 (after refinement).
+    int32_t existing_midpoint(int32_t a, int32_t b) const;
+    std::size_t leaves() const { return leaves_; }
+    /// Whether a split was refused because the leaves reached the cap.
+    bool cap_reached() const { return cap_reached_; }
+
+private:
+    int32_t build_cluster(int32_t begin, int32_t end, int32_t parent);
+    void fill_element(Node& n, const Node& parent);
+
+    float min_element_size_ = 0.0f;
+    std::size_t max_leaves_ = 0;
+    std::atomic<std::size_t> leaves_{0};
+    std::atomic<bool> cap_reached_{false};
+    std::array<std::mutex, 256> split_locks_;
+    mutable std::mutex midpoint_lock_;
+    std::map<std::pair<int32_t, int32_t>, int32_t> midpoints_;
+};
+
+/// Sample points of an element for the factor and visibility estimates: 2 x 2 Gauss-Legendre
+/// points of its bilinear map (quads) or the 3-point rule's points (triangles). Returns the count.
+int element_samples(const Tree& tree, const Node& n, std::array<Vec3, 4>& points);
+
+/// `grid` x `grid` points of an element, one placed at random (by `seed`) in each cell of its
+/// parameter square (quads: bilinear; triangles: the square mapped onto them by area), for
+/// unbiased visibility. Writes grid^2 points.
+void jittered_points(const Tree& tree, const Node& n, int grid, uint32_t seed, Vec3* points);
+
+/// Points near an element's corners (a tenth of the way to its centre) and its centre: where a
+/// transfer varying across the element shows its extremes, which symmetric Gauss points can hide.
+int element_probes(const Tree& tree, const Node& n, std::array<Vec3, 5>& points);
+
+/// Corner positions of an element.
+int element_corners(const Tree& tree, const Node& n, std::array<Vec3, 4>& corners);
+
+}  // namespace radiosity::hr

@@ -1,0 +1,37 @@
+/// @file hr_visibility.h
+/// @brief Is the segment between two points free of occluders? Rays traced by Embree against
+/// the patches (internal). Both sides of every patch occlude, as in the hemi-cube.
+#pragma once
+
+#include "radiosity/types.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace radiosity::hr {
+
+class Visibility {
+public:
+    /// `corners` per patch (4 ids, [3] = -1 for triangles) into `vertices`.
+    Visibility(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 4>>& corners, float scene_size);
+    ~Visibility();
+    Visibility(const Visibility&) = delete;
+    Visibility& operator=(const Visibility&) = delete;
+
+    /// True when nothing lies strictly between `from` and `to` (their own surfaces excluded by a
+    /// gap of 1e-6 of the scene size, at least 1e-4 of the segment). Thread-safe.
+    bool clear(const Vec3& from, const Vec3& to) const;
+    /// True when nothing lies along `direction` (unit) from `from` out of the scene.
+    bool clear_towards(const Vec3& from, const Vec3& direction) const;
+
+private:
+    bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    float gap_ = 0.0f, scene_size_ = 0.0f;
+};
+
+}  // namespace radiosity::hr

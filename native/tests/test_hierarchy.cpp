@@ -1,0 +1,204 @@
+/// @file test_hierarchy.cpp
+/// @brief Hierarchical radiosity against exact answers: a furnace, analytic factors, a point
+/// lamp's direct light and shadow, the uniform bake of the same scene; and its mesh, clusters,
+/// cap and cancel.
+#include "radiosity/bake.h"
+#include "radiosity/hierarchy.h"
+#include "radiosity/near_field.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace radiosity {
+namespace {
+
+HierarchySettings settings(float min_size, double refine_tolerance) {
+    HierarchySettings s;
+    s.min_element_size = min_size;
+    s.refine_tolerance = refine_tolerance;
+    s.tolerance = 1e-7;
+    s.max_rounds = 40;
+    return s;
+}
+
+/// Area-weighted mean radiance (red) per input polygon.
+std::map<int32_t, double> polygon_means(const Elements& e, const std::vector<Rgb>& radiance) {
+    std::map<int32_t, double> power, area;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        power[e.polygon[i]] += radiance[i].r * e.area[i];
+        area[e.polygon[i]] += e.area[i];
+    }
+    for (auto& [p, value] : power) value /= area[p];
+    return power;
+}
+
+TEST(Hierarchy, FurnaceIsUniformAtTheExactValue) {
+    // Closed box, rho = 0.8, E = 1: L = E / (1 - rho) = 5 everywhere, however the box is meshed,
+    // if every leaf's factors sum to 1 (links at many levels, near field at the edges).
+    const auto box = test::closed_box(Vec3(1, 2, 3), Rgb(0.8), Rgb(1.0));
+    const HierarchyResult r = bake_hierarchical(box.input(), settings(0.05f, 0.005));
+    ASSERT_TRUE(r.converged);
+    ASSERT_GT(r.stats.leaves, 6u);
+    for (const Rgb& L : r.output_radiance) EXPECT_NEAR(L.r, 5.0, 0.05);
+}
+
+TEST(Hierarchy, OpposedSquaresMatchTheAnalyticFactor) {
+    // A black emitter (L = 1) over a receiver with rho = 0.5: L_r = rho F, no further bounce.
+    // F = 0.19982 for unit squares one apart (Howell, C-11).
+    auto squares = test::opposed_unit_squares(1.0f, Rgb(0.5), Rgb(1.0));
+    for (int k = 0; k < 3; ++k) squares.reflectance[k] = 0.0f;  // the emitter reflects nothing
+    const HierarchyResult r = bake_hierarchical(squares.input(), settings(0.05f, 0.01));
+    EXPECT_NEAR(polygon_means(r.output, r.output_radiance).at(1), 0.5 * 0.19982, 0.5 * 0.19982 * 2e-3);
+}
+
+TEST(Hierarchy, PointLampLightsTheFloorExactlyAndRefinesAtTheShadowEdge) {
+    // A 2 m floor under a lamp 1 m up, a small black card halfway between casting a shadow.
+    test::SceneArrays scene;
+    scene.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(0.5));
+    scene.add_quad({-0.1f, -0.1f, 0.5f}, {-0.1f, 0.1f, 0.5f}, {0.1f, 0.1f, 0.5f}, {0.1f, -0.1f, 0.5f}, Rgb(0.0));
+    HierarchySettings s = settings(0.01f, 0.003);
+    PointLight lamp;
+    lamp.position = Vec3(0, 0, 1);
+    lamp.intensity = Rgb(1.0);
+    s.lights.points.push_back(lamp);
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+
+    // The card's shadow on the floor is the square |x|, |y| < 0.2 (twice the card: half-way up).
+    // What the artist sees are the corner colours: they must match rho I cos / (pi r^2) at the
+    // corners, wherever the element is off the shadow's edge (coarse ones included: there the
+    // light varies nearly linearly, and corners interpolate that).
+    auto to_shadow_edge = [](const Vec3& p) { return std::abs(std::max(std::abs(p.x), std::abs(p.y)) - 0.2f); };
+    float edge_size = 0.0f, far_size = 0.0f;
+    std::size_t checked = 0;
+    for (std::size_t e = 0; e < r.output.size(); ++e) {
+        if (r.output.polygon[e] != 0) continue;
+        const float size = std::sqrt(r.output.area[e]);
+        const float to_edge = to_shadow_edge(r.output.centre[e]);
+        if (to_edge < 0.02f) edge_size = std::max(edge_size, size);
+        if (to_edge > 0.5f) far_size = std::max(far_size, size);
+        if (to_edge < 2.0f * size) continue;  // its corners blend with elements across the edge
+        for (int k = 0; k < (r.output.is_triangle(e) ? 3 : 4); ++k) {
+            const Vec3 p = r.output.vertices[r.output.corners[e][k]];
+            if (std::max(std::abs(p.x), std::abs(p.y)) > 0.99f) continue;  // the floor's border
+            const bool shadowed = std::max(std::abs(p.x), std::abs(p.y)) < 0.2f;
+            const float r2 = glm::dot(p - lamp.position, p - lamp.position);
+            const double exact = shadowed ? 0.0 : 0.5 * (1.0 / std::sqrt(r2)) / (M_PI * r2);
+            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 0.02 * 0.5 / M_PI) << "corner " << p.x << ", " << p.y;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 100u);
+    // Elements are fine along the shadow's edge and coarse far from it.
+    EXPECT_LE(edge_size, 0.03f);
+    EXPECT_GE(far_size, 4.0f * edge_size);
+}
+
+TEST(Hierarchy, CornellBoxAgreesWithTheUniformBake) {
+    const auto cornell = test::cornell_box();
+    BakeSettings uniform;
+    uniform.element_size = 0.03f;
+    uniform.solve.tolerance = 1e-7;
+    const BakeResult reference = bake(cornell.input(), uniform);
+    const auto expected = polygon_means(reference.build.elements, reference.solve.radiance);
+
+    const HierarchyResult r = bake_hierarchical(cornell.input(), settings(0.03f, 0.01));
+    const auto got = polygon_means(r.output, r.output_radiance);
+    for (const auto& [polygon, value] : expected)
+        EXPECT_NEAR(got.at(polygon), value, 0.04 * value) << "polygon " << polygon;
+}
+
+TEST(Hierarchy, OutputMeshHasNoTVertices) {
+    // Two polygons sharing an edge, refined differently (a lamp close to one of them): no vertex
+    // may lie inside another element's edge, so colours cannot crack.
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    HierarchySettings s = settings(0.02f, 0.01);
+    PointLight lamp;
+    lamp.position = Vec3(0.5f, 0.5f, 0.1f);
+    lamp.intensity = Rgb(1.0);
+    s.lights.points.push_back(lamp);
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    const Elements& out = r.output;
+    ASSERT_GT(out.size(), 50u);
+    std::size_t hanging = 0;
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        const int count = out.is_triangle(e) ? 3 : 4;
+        for (int k = 0; k < count; ++k) {
+            const Vec3 a = out.vertices[out.corners[e][k]], b = out.vertices[out.corners[e][(k + 1) % count]];
+            for (const Vec3& v : out.vertices) {
+                const Vec3 ab = b - a, av = v - a;
+                const float t = glm::dot(av, ab) / glm::dot(ab, ab);
+                if (t > 1e-4f && t < 1.0f - 1e-4f && glm::length(av - t * ab) < 1e-6f) ++hanging;
+            }
+        }
+    }
+    EXPECT_EQ(hanging, 0u);
+    for (const Rgb& c : r.colors.element_corner) EXPECT_TRUE(std::isfinite(c.r) && c.r >= 0.0);
+}
+
+/// n x n small patches on a floor (0.1 m apart) under an emitter 3 m up.
+test::SceneArrays patch_grid(int n) {
+    test::SceneArrays scene;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const float x = i * 0.1f, y = j * 0.1f;
+            scene.add_quad({x, y, 0}, {x + 0.08f, y, 0}, {x + 0.08f, y + 0.08f, 0}, {x, y + 0.08f, 0}, Rgb(0.5));
+        }
+    const float c = n * 0.05f;
+    scene.add_quad({c - 0.5f, c - 0.5f, 3}, {c - 0.5f, c + 0.5f, 3}, {c + 0.5f, c + 0.5f, 3}, {c + 0.5f, c - 0.5f, 3},
+                   Rgb(0.0), Rgb(1.0));  // facing down
+    return scene;
+}
+
+TEST(Hierarchy, ClustersKeepLinksNearLinear) {
+    // Without clusters every pair of patches would need a link: n^2. With them, four times the
+    // patches must take far less than sixteen times the links (n log n: about 4.8).
+    const HierarchyResult small = bake_hierarchical(patch_grid(32).input(), settings(0.1f, 0.05));
+    const HierarchyResult large = bake_hierarchical(patch_grid(64).input(), settings(0.1f, 0.05));
+    EXPECT_GT(small.stats.clusters, 1000u);
+    EXPECT_LT(double(large.stats.links) / double(small.stats.links), 6.0)
+        << small.stats.links << " links for 1025 patches, " << large.stats.links << " for 4097";
+    // Every patch is lit as the point formula says: L = rho E cos^2 A / (pi r^2).
+    const auto means = polygon_means(small.output, small.output_radiance);
+    const Vec3 light(1.6f, 1.6f, 3.0f);
+    for (int p = 0; p < 1024; p += 37) {
+        const Vec3 c(float(p / 32) * 0.1f + 0.04f, float(p % 32) * 0.1f + 0.04f, 0.0f);
+        const Vec3 d = light - c;
+        const float r2 = glm::dot(d, d), cosine = d.z / std::sqrt(r2);
+        const double expected = 0.5 * cosine * cosine / (M_PI * r2);
+        EXPECT_NEAR(means.at(p), expected, 0.05 * expected) << "patch " << p;
+    }
+}
+
+TEST(Hierarchy, LeafCapStopsRefinementWithoutFailing) {
+    const auto cornell = test::cornell_box();
+    HierarchySettings s = settings(0.005f, 0.001);
+    s.limits.max_elements = 2000;
+    const HierarchyResult r = bake_hierarchical(cornell.input(), s);
+    EXPECT_LE(r.stats.leaves, 2000u);
+    EXPECT_TRUE(r.stats.leaf_cap_reached);
+    for (const Rgb& L : r.output_radiance) EXPECT_TRUE(std::isfinite(L.r));
+}
+
+TEST(Hierarchy, CancelStopsTheBake) {
+    const auto cornell = test::cornell_box();
+    std::size_t calls = 0;
+    auto cancel_at_solve = [&](const Progress& p) { ++calls; return std::string(p.phase) != "solve"; };
+    EXPECT_THROW(bake_hierarchical(cornell.input(), settings(0.03f, 0.01), cancel_at_solve), Cancelled);
+    EXPECT_GT(calls, 0u);
+}
+
+TEST(Hierarchy, BadSettingsAreInputErrors) {
+    const auto box = test::closed_box(Vec3(1), Rgb(0.5), Rgb(1.0));
+    EXPECT_THROW(bake_hierarchical(box.input(), settings(0.0f, 0.01)), InputError);
+    EXPECT_THROW(bake_hierarchical(box.input(), settings(0.1f, std::nan(""))), InputError);
+}
+
+}  // namespace
+}  // namespace radiosity
