@@ -68,9 +68,7 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     seconds["interpolate"] = result.seconds_interpolate;
 
     add_elements(result.build, out);
-    out["corner_radiance"] = to_numpy(result.colors.input_corner);
-    out["element_corner_radiance"] = element_corner_array(result.colors.element_corner);
-    out["element_radiance"] = to_numpy(result.solve.radiance);
+    add_surface_solution(result.build.elements, result.solve.radiance, result.colors, out);
     out["iterations"] = result.solve.iterations;
     out["shots"] = result.solve.shots;
     out["residual"] = result.solve.residual;
@@ -80,10 +78,17 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;
     out["seconds"] = seconds;
+}
+
+void add_surface_solution(const Elements& elements, const std::vector<Rgb>& radiance, const CornerColors& colors,
+                          py::dict& out) {
+    out["corner_radiance"] = to_numpy(colors.input_corner);
+    out["element_corner_radiance"] = element_corner_array(colors.element_corner);
+    out["element_radiance"] = to_numpy(radiance);
     // What the solve used per element, so the add-on can account for power: emission includes
     // the lamps' first reflection (rho E / pi), reflectance is the capped input.
-    out["element_emission"] = to_numpy(result.build.elements.emission);
-    out["element_reflectance"] = to_numpy(result.build.elements.reflectance);
+    out["element_emission"] = to_numpy(elements.emission);
+    out["element_reflectance"] = to_numpy(elements.reflectance);
 }
 
 }  // namespace radiosity::python

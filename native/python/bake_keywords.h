@@ -35,4 +35,9 @@ private:
 /// bake()'s result keys (elements, corner colours, solve statistics, seconds) added to `out`.
 void add_bake_result(const BakeResult& result, py::dict& out);
 
+/// The per-element solution keys both surface bakes return: corner colours (input and element
+/// corners), element radiance, and the emission and reflectance the solve used.
+void add_surface_solution(const Elements& elements, const std::vector<Rgb>& radiance, const CornerColors& colors,
+                          py::dict& out);
+
 }  // namespace radiosity::python

@@ -11,6 +11,7 @@ namespace radiosity::python {
 namespace py = pybind11;
 
 void bind_bake(py::module_& m);
+void bind_hierarchy(py::module_& m);
 void bind_vdb(py::module_& m);
 void bind_zonal(py::module_& m);
 

@@ -11,6 +11,7 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "Bake Radiosity's native core: hemi-cube form factors and radiosity solvers.";
     py::register_exception<radiosity::Cancelled>(m, "Cancelled");
     radiosity::python::bind_bake(m);
+    radiosity::python::bind_hierarchy(m);
     radiosity::python::bind_progress_monitor(m);
     radiosity::python::bind_vdb(m);
     radiosity::python::bind_zonal(m);

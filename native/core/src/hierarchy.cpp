@@ -70,7 +70,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     result.stats.rounds = round;
 
     start = Clock::now();
-    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build);
+    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, hr::lamp_light(tree));
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
     result.colors = interpolate_corners(result.output, result.output_radiance, input.material, settings.hard_edge_angle);

@@ -20,9 +20,12 @@ void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>&
 
 class MeshWriter {
 public:
-    MeshWriter(const Tree& tree, const BuildResult& build, LeafMesh& mesh) : tree_(tree), build_(build), mesh_(mesh) {}
+    MeshWriter(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light, LeafMesh& mesh)
+        : tree_(tree), build_(build), lamp_light_(lamp_light), mesh_(mesh) {}
 
-    void leaf(const Node& n) {
+    void leaf(int32_t id) {
+        const Node& n = tree_.nodes[id];
+        emission_ = n.emission + n.reflectance * lamp_light_[id];
         ++mesh_.leaves;
         const int count = n.is_triangle() ? 3 : 4;
         boundary_.clear();
@@ -57,20 +60,22 @@ private:
         out.area.push_back(static_cast<float>(0.5 * glm::length(twice)));
         out.polygon.push_back(build_.elements.polygon[n.patch]);
         out.reflectance.push_back(n.reflectance);
-        out.emission.push_back(n.emission);
+        out.emission.push_back(emission_);
         mesh_.radiance.push_back(n.radiance);
     }
 
     const Tree& tree_;
     const BuildResult& build_;
+    const std::vector<Rgb>& lamp_light_;
     LeafMesh& mesh_;
+    Rgb emission_{0.0};
     std::vector<int32_t> boundary_;
 };
 
 void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
     const Node& n = tree.nodes[id];
     if (n.is_leaf()) {
-        writer.leaf(n);
+        writer.leaf(id);
         return;
     }
     for (int k = 0; k < n.child_count; ++k) visit_leaves(tree, child(n, k), writer);
@@ -78,13 +83,13 @@ void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
 
 }  // namespace
 
-LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build) {
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light) {
     LeafMesh mesh;
     Elements& out = mesh.elements;
     out.vertices.assign(tree.vertices.begin(), tree.vertices.end());
     out.corner_vertex.reserve(build.elements.corner_vertex.size());
     for (int32_t v : build.elements.corner_vertex) out.corner_vertex.push_back(v < 0 ? -1 : tree.patch_vertex[v]);
-    MeshWriter writer(tree, build, mesh);
+    MeshWriter writer(tree, build, lamp_light, mesh);
     for (std::size_t p = 0; p < tree.patch_count; ++p) visit_leaves(tree, static_cast<int32_t>(p), writer);
     return mesh;
 }

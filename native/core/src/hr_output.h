@@ -16,6 +16,8 @@ struct LeafMesh {
 /// its corners; one with some becomes a fan of triangles around its centre, so that neighbours
 /// share every vertex on their common edge (no T-vertices). Input corners map to the welded
 /// patch vertices (Elements::corner_vertex), so original meshes get their colours too.
-LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build);
+/// Elements::emission holds E + rho G_lamps (`lamp_light`, per node): the lamps' first
+/// reflection counts as emitted light, as bake() counts it.
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light);
 
 }  // namespace radiosity::hr

@@ -28,7 +28,10 @@ void deposit(AmbientCube& cube, const Vec3& direction, const Rgb& value) {
     for (int a = 0; a < 3; ++a) cube[2 * a + (direction[a] >= 0.0f ? 0 : 1)] += value * double(std::abs(direction[a]));
 }
 
-void gather(Tree& tree) {
+bool is_lamp(const Node& n) { return n.kind == Kind::PointLamp || n.kind == Kind::Sun; }
+
+/// Every node sums its links (`lamps_only`: only those from lamps) into gathered or cube.
+void gather(Tree& tree, bool lamps_only = false) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tree.nodes.size(), 512), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             Node& r = tree.nodes[i];
@@ -36,6 +39,7 @@ void gather(Tree& tree) {
             r.cube = AmbientCube{};
             for (const Link& l : r.links) {
                 const Node& s = tree.nodes[l.source];
+                if (lamps_only && !is_lamp(s)) continue;
                 if (r.is_element() && s.is_element()) {
                     r.gathered += double(l.factor) * s.radiance;
                     continue;
@@ -116,7 +120,34 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
     set_range(tree, n);
 }
 
+/// Pushes gathered light down without touching radiance: `total[id]` of every element.
+void push(const Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb& gathered_above,
+          std::vector<Rgb>& total) {
+    const Node& n = tree.nodes[id];
+    if (n.kind == Kind::Cluster) {
+        AmbientCube cube = n.cube;
+        for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
+        for (int k = 0; k < n.child_count; ++k) {
+            const int32_t c = child(n, k);
+            const Node& below = tree.nodes[c];
+            if (below.is_element()) push(tree, c, AmbientCube{}, read_cube(cube, below.normal), total);
+            else push(tree, c, cube, Rgb(0.0), total);
+        }
+        return;
+    }
+    total[id] = gathered_above + n.gathered;
+    for (int k = 0; k < n.child_count; ++k) push(tree, child(n, k), AmbientCube{}, total[id], total);
+}
+
 }  // namespace
+
+std::vector<Rgb> lamp_light(Tree& tree) {
+    std::vector<Rgb> total(tree.nodes.size(), Rgb(0.0));
+    if (tree.root < 0 || tree.lamp_nodes.empty()) return total;
+    gather(tree, true);
+    push(tree, tree.root, AmbientCube{}, Rgb(0.0), total);
+    return total;
+}
 
 void pull(Tree& tree) {
     Totals unused;

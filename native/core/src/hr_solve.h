@@ -22,6 +22,10 @@ void pull(Tree& tree);
 SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vector<double>& history,
                         const ProgressFn& progress);
 
+/// What every element gathers from the lamps alone (the solve folds it into G): per node id,
+/// for the energy account (a lamp's first reflection counts as emitted, as in bake()).
+std::vector<Rgb> lamp_light(Tree& tree);
+
 /// Area-weighted mean reflected radiance L - E of the scene, largest channel: the refinement's
 /// scale (what the bake shows; emitters would swamp it, a bright small lamp most of all).
 double mean_reflected_radiance(const Tree& tree);
