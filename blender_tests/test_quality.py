@@ -85,14 +85,18 @@ def test_automatic_method_follows_the_memory_budget():
 
     settings.memory_budget = too_small_mb
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
-    assert "progressive refinement" in settings.last_report and "NOT" not in settings.last_report, settings.last_report
+    assert "hierarchical" in settings.last_report and "NOT" not in settings.last_report, settings.last_report
+    assert "leaves" in settings.last_report and "links" in settings.last_report, settings.last_report
     summary = addon.bake(bpy.context.scene)
-    assert summary["method"] == "progressive" and not summary["matrix_stored"] and summary["converged"], summary
-    on_demand = harness.corner_colors(box.data, "Radiosity")
-    # Rows on demand solve with reciprocal columns: close to the stored solve, not equal (docs/design.md).
-    difference = np.sqrt(np.mean((on_demand - stored) ** 2)) / np.sqrt(np.mean(stored ** 2))
-    print("%d elements, bound %d bytes; budget %d MB: Gauss-Seidel; %d MB: progressive on demand, "
-          "%.2f%% RMS from the stored solve" % (elements, bound, fits_mb, too_small_mb, 100 * difference))
+    assert summary["method"] == "hierarchical" and not summary["matrix_stored"] and summary["converged"], summary
+    assert summary["hierarchy"]["leaves"] <= summary["elements"], summary["hierarchy"]
+    hierarchical = harness.corner_colors(box.data, "Radiosity")
+    # Another discretisation of the same scene (elements where the light needs them, links between
+    # groups): close to the stored solve, not equal (docs/hierarchy.md).
+    difference = np.sqrt(np.mean((hierarchical - stored) ** 2)) / np.sqrt(np.mean(stored ** 2))
+    print("%d elements, bound %d bytes; budget %d MB: Gauss-Seidel; %d MB: hierarchical (%d leaves), "
+          "%.2f%% RMS from the stored solve" % (elements, bound, fits_mb, too_small_mb,
+                                                summary["hierarchy"]["leaves"], 100 * difference))
     assert 0 < difference < 0.05
 
     # The batch command takes the same budget.
@@ -137,7 +141,7 @@ def test_panel_shows_quality_and_summary():
     settings.quality = "MEDIUM"
     drawn = drawn_panel()
     assert "quality" in drawn and "memory_budget" in drawn and "element_size" not in drawn, drawn
-    assert "Elements 1/32 of the scene, resolution 128, tolerance 0.0001" in drawn, drawn
+    assert "Elements 1/32 of the scene, resolution 128, tolerance 0.0001, refinement 0.02" in drawn, drawn
     settings.quality = "CUSTOM"
     drawn = drawn_panel()
     for name in ("method", "element_size", "hemicube_resolution", "tolerance", "max_iterations"):

@@ -7,7 +7,8 @@ from dataclasses import dataclass
 
 from . import export, native
 
-CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive"}
+CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive",
+                "HIERARCHICAL": "hierarchical"}
 MEBIBYTE = 1 << 20
 # Stability mitigations of docs/stability.md, on for every quality: slivers are cut until no
 # element is longer than 4 times its width, and Gauss-Seidel over-relaxes with the core's
@@ -21,12 +22,13 @@ class Preset:
     divisions: int      # element size = scene size / divisions (about 6 divisions^2 elements)
     resolution: int     # 4 x divisions: an element one scene size away covers about 2 cells across
     tolerance: float
+    refine_tolerance: float  # hierarchical: error per link, share of the mean reflected radiance
 
 
 PRESETS = {
-    "DRAFT": Preset(16, 64, 1e-3),
-    "MEDIUM": Preset(32, 128, 1e-4),
-    "HIGH": Preset(48, 192, 1e-5),
+    "DRAFT": Preset(16, 64, 1e-3, 0.05),
+    "MEDIUM": Preset(32, 128, 1e-4, 0.02),
+    "HIGH": Preset(48, 192, 1e-5, 0.01),
 }
 
 
@@ -36,7 +38,8 @@ class Choice:
     element_size: float
     resolution: int
     tolerance: float
-    method: str                 # core name: gauss_seidel, jacobi, progressive
+    refine_tolerance: float
+    method: str                 # core name: gauss_seidel, jacobi, progressive, hierarchical
     elements: int
     scene_size: float
     matrix_bytes_bound: int     # the core's worst case for the stored matrix
@@ -68,8 +71,10 @@ def choose(settings, exported, zonal=False):
         element_size = float(settings["element_size"])
         resolution = int(settings["hemicube_resolution"])
         tolerance = float(settings["tolerance"])
+        refine_tolerance = float(settings["refine_tolerance"])
     else:
         element_size, resolution, tolerance = size / preset.divisions, preset.resolution, preset.tolerance
+        refine_tolerance = preset.refine_tolerance
     resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
 
     max_element_aspect = 0.0 if zonal else MAX_ELEMENT_ASPECT
@@ -84,10 +89,14 @@ def choose(settings, exported, zonal=False):
         method = CORE_METHODS[settings["method"]]
     else:
         # Within the budget the core stores F and Gauss-Seidel is fastest (docs/benchmarks.md);
-        # beyond it only progressive refinement solves in memory O(n) without re-rendering every
-        # row each sweep.
-        method = "gauss_seidel" if bound <= budget else "progressive"
-    return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance, method=method,
+        # beyond it the hierarchy's cost grows nearly linearly (docs/hierarchy.md). It has no media:
+        # there progressive refinement solves in memory O(n).
+        method = "gauss_seidel" if bound <= budget else ("progressive" if zonal else "hierarchical")
+    if zonal and method == "hierarchical":
+        raise ValueError("The hierarchical method does not bake fog or smoke yet: choose Automatic or "
+                         "progressive refinement for scenes with media")
+    return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance,
+                  refine_tolerance=refine_tolerance, method=method,
                   elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
                   max_element_aspect=max_element_aspect)
 

@@ -21,10 +21,11 @@ def parse(argv):
     parser.add_argument("--scene", help="scene to bake (default: the file's active scene)")
     parser.add_argument("--quality", choices=("DRAFT", "MEDIUM", "HIGH", "CUSTOM"),
                         help="preset; naming --method, --resolution, --element-size or --tolerance alone means CUSTOM")
-    parser.add_argument("--method", choices=("AUTO", "GAUSS_SEIDEL", "PROGRESSIVE", "JACOBI"))
+    parser.add_argument("--method", choices=("AUTO", "GAUSS_SEIDEL", "PROGRESSIVE", "JACOBI", "HIERARCHICAL"))
     parser.add_argument("--resolution", type=int, dest="hemicube_resolution", help="hemi-cube resolution")
     parser.add_argument("--element-size", type=float, help="largest element edge in metres (0 = faces)")
     parser.add_argument("--tolerance", type=float, help="relative residual to stop at")
+    parser.add_argument("--refine-tolerance", type=float, help="hierarchical: error per link, share of the mean")
     parser.add_argument("--max-iterations", type=int)
     parser.add_argument("--memory-budget", type=int, help="megabytes the stored form factors may take")
     parser.add_argument("--hard-edge-angle", type=float, help="degrees")

@@ -10,12 +10,14 @@ import bpy
 from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
                writeback)
 
-SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "max_iterations",
+SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
+                 "max_iterations",
                  "memory_budget", "hard_edge_angle", "attribute_name", "target", "zone_size", "media_folder")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
-CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance")
+CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
 QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
-METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement"}
+METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
+                 "hierarchical": "hierarchical"}
 TARGETS = ("ORIGINAL", "COPIES")
 
 
@@ -36,7 +38,8 @@ def settings_of(scene, overrides=None):
     if settings["quality"] not in QUALITIES:
         raise TypeError("quality must be DRAFT, MEDIUM, HIGH or CUSTOM, got %r" % settings["quality"])
     if settings["method"] not in ("AUTO",) + tuple(auto_settings.CORE_METHODS):
-        raise TypeError("method must be AUTO, GAUSS_SEIDEL, PROGRESSIVE or JACOBI, got %r" % settings["method"])
+        raise TypeError("method must be AUTO, GAUSS_SEIDEL, PROGRESSIVE, JACOBI or HIERARCHICAL, got %r"
+                        % settings["method"])
     if settings["target"] not in TARGETS:
         raise TypeError("target must be ORIGINAL or COPIES, got %r" % settings["target"])
     return settings
@@ -61,7 +64,10 @@ class BakeJob:
         if not self.exported.lights and not self.exported.emission.any() and not any(
                 m.grid["emission"].any() for m in self.media.media):
             self.warnings.append("The scene has no emitting material and no lamp: the bake will be black")
-        self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
+        try:
+            self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
+        except ValueError as error:
+            raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
         self.result = None
 
@@ -85,9 +91,17 @@ class BakeJob:
 
     def _run_core(self, method, max_iterations, progress):
         e, c = self.exported, self.choice
+        if method == "hierarchical":
+            return native.core().bake_hierarchical(
+                e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
+                element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
+                max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
+                lights=e.lights, progress=progress)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
-            bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media])
+            over_relaxation = {"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION} if method == "gauss_seidel" else {}
+            bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media],
+                                     **over_relaxation)
         return bake(
             e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
             element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
@@ -117,7 +131,9 @@ class BakeJob:
             "error_estimate": {"solve_bound": error.solve_bound, "discretisation": error.discretisation,
                                "discretisation_vs_cycles": error.discretisation_vs_cycles,
                                "discretisation_relation": error.discretisation_relation},
-            "zones": r.get("zones", 0), "zone_size": self.media.zone_size, "media_files": media_files,
+            "zones": r.get("zones", 0), "zones_before_merge": r.get("zones_before_merge", 0),
+            "zone_size": self.media.zone_size, "media_files": media_files,
+            "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
             "warnings": list(self.warnings),
             "seconds": {"export": self.seconds_export, "form_factors": r["seconds"]["form_factors"],
                         "solve": r["seconds"]["solve"], "writeback": seconds_writeback},
@@ -141,7 +157,14 @@ class BakeJob:
 def report_line(summary):
     seconds = sum(summary["seconds"].values())
     state = "converged" if summary["converged"] else "NOT converged"
-    zones = ", %d zones of %.3g m" % (summary["zones"], summary["zone_size"]) if summary.get("zones") else ""
+    zones = ""
+    if summary.get("zones"):
+        # Uniform regions merge into larger zones (docs/volumes.md): both counts.
+        zones = ", %d zones (%d voxels of %.3g m)" % (summary["zones"], summary["zones_before_merge"],
+                                                      summary["zone_size"])
+    hierarchy = summary.get("hierarchy")
+    if hierarchy:
+        zones = " (%d leaves of %d faces, %d links)" % (hierarchy["leaves"], hierarchy["patches"], hierarchy["links"])
     return "%d elements%s, %s, %d iterations, residual %.2g (%s), %.1f s" % (
         summary["elements"], zones, METHOD_LABELS[summary["method"]], summary["iterations"],
         summary["residual"], state, seconds)

@@ -19,9 +19,12 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="How fine and how exact the bake is. The presets choose element size (relative to "
                     "the scene's size), hemi-cube resolution, tolerance and method; Custom shows each",
         items=(
-            ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution 64, tolerance 1e-3"),
-            ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution 128, tolerance 1e-4"),
-            ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution 192, tolerance 1e-5"),
+            ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution 64, tolerance 1e-3, "
+             "refinement 0.05"),
+            ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution 128, tolerance 1e-4, "
+             "refinement 0.02"),
+            ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution 192, tolerance 1e-5, "
+             "refinement 0.01"),
             ("CUSTOM", "Custom", "Set element size, resolution, tolerance and method yourself"),
         ),
         default="MEDIUM",
@@ -29,8 +32,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
     memory_budget: IntProperty(
         name="Memory Budget",
         description="Megabytes the table of form factors may take. Automatic method stores the table "
-                    "(Gauss-Seidel) when its worst case fits, otherwise it shoots light progressively "
-                    "with memory in proportion to the scene",
+                    "(Gauss-Seidel) when its worst case fits, otherwise it bakes hierarchically, with "
+                    "memory and time nearly in proportion to the scene",
         default=2048, min=1, soft_max=65536, subtype="UNSIGNED",
     )
     method: EnumProperty(
@@ -38,7 +41,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="How the radiosity equations are solved",
         items=(
             ("AUTO", "Automatic",
-             "Gauss-Seidel when the form factors fit the memory budget, otherwise progressive refinement"),
+             "Gauss-Seidel when the form factors fit the memory budget, otherwise hierarchical (scenes "
+             "with fog or smoke: progressive refinement)"),
             ("GAUSS_SEIDEL", "Gauss-Seidel",
              "Store every form factor once, then gather until converged. Fastest for small and medium scenes"),
             ("PROGRESSIVE", "Progressive Refinement",
@@ -46,6 +50,10 @@ class RadiositySettings(bpy.types.PropertyGroup):
              "with the scene, and the viewport shows the solution brightening"),
             ("JACOBI", "Jacobi",
              "Like Gauss-Seidel but every element is updated from the previous sweep. Slower; for comparison"),
+            ("HIERARCHICAL", "Hierarchical",
+             "Split faces only where the light changes (shadow edges, corners), down to the element size, "
+             "and let far groups of faces exchange light as one. Time and memory grow nearly in proportion "
+             "to the scene: for large scenes. Not for scenes with fog or smoke"),
         ),
         default="AUTO",
         update=_switch_to_custom,
@@ -69,6 +77,14 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="Stop when the remaining error of the solution, relative to the emitted light, "
                     "falls below this (1e-3 preview, 1e-4 final)",
         default=1e-4, min=1e-8, max=0.5, precision=6,
+        update=_switch_to_custom,
+    )
+    refine_tolerance: FloatProperty(
+        name="Refinement",
+        description="Hierarchical method: how much error each exchange of light may carry, as a share "
+                    "of the scene's mean brightness, before its faces are split further (0.05 quick look, "
+                    "0.02 normal, 0.01 final). Smaller: finer shadows and more elements",
+        default=0.02, min=1e-4, max=1.0, precision=4,
         update=_switch_to_custom,
     )
     max_iterations: IntProperty(

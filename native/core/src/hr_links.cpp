@@ -200,8 +200,8 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     else Q[0] = s.centre;
 
     const PointLight* lamp = s.kind == Kind::PointLamp ? &tree_.lights.points[s.lamp] : nullptr;
-    auto transfer_at = [&](const Vec3& x) {  // per unit of the source's intensity, point to point
-        const Vec3 d = sun ? -s.normal : s.centre - x;
+    auto transfer = [&](const Vec3& x, const Vec3& q) {  // per unit of the source's intensity, x from q
+        const Vec3 d = sun ? -s.normal : q - x;
         const double distance2 = sun ? 1.0 : glm::dot(d, d);
         if (!(distance2 > 0.0)) return std::numeric_limits<double>::infinity();
         const Vec3 u = sun ? d : d / std::sqrt(float(distance2));
@@ -210,8 +210,15 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
         if (s.is_element()) value *= glm::dot(s.normal, -u) > 0.0f ? 1.0 : 0.0;  // an element lights its front
         return value;
     };
+    auto transfer_at = [&](const Vec3& x) { return transfer(x, s.centre); };
+    // The mean over pairs of points of both ends: 1 / d^2 averaged over an extended source (or
+    // receiver) exceeds its value at the centres, which would lose light all over the scene.
     Spread g;
-    for (int k = 0; k < np; ++k) g.add(transfer_at(P[k]));
+    for (int k = 0; k < np; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < nq; ++j) sum += transfer(P[k], Q[j]);
+        g.add(sum / nq);
+    }
     std::array<double, 5> at{};
     int probe_count = 0;
     if (r.is_element()) {

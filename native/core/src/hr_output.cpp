@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <unordered_map>
+
 namespace radiosity::hr {
 namespace {
 
@@ -26,19 +28,34 @@ public:
     void leaf(int32_t id) {
         const Node& n = tree_.nodes[id];
         emission_ = n.emission + n.reflectance * lamp_light_[id];
+        polygon_ = build_.elements.polygon[n.patch];
         ++mesh_.leaves;
         const int count = n.is_triangle() ? 3 : 4;
         boundary_.clear();
         for (int k = 0; k < count; ++k) edge_vertices(tree_, n.corners[k], n.corners[(k + 1) % count], boundary_);
         if (static_cast<int>(boundary_.size()) == count) {
-            add(n, n.corners);
+            std::array<int32_t, 4> corners{-1, -1, -1, -1};
+            for (int k = 0; k < count; ++k) corners[k] = vertex(n.corners[k]);
+            add(n, corners);
             return;
         }
         Elements& out = mesh_.elements;
         const auto centre = static_cast<int32_t>(out.vertices.size());
         out.vertices.push_back(n.centre);
         for (std::size_t k = 0; k < boundary_.size(); ++k)
-            add(n, {centre, boundary_[k], boundary_[(k + 1) % boundary_.size()], -1});
+            add(n, {centre, vertex(boundary_[k]), vertex(boundary_[(k + 1) % boundary_.size()]), -1});
+    }
+
+    /// The output vertex of tree vertex `v` in the current leaf's input polygon. Each polygon has
+    /// its own vertices, as bake()'s elements do: an input corner then names one polygon's
+    /// colour (neighbours still meet at equal positions, where interpolation welds them).
+    int32_t vertex(int32_t v) { return vertex_in(polygon_, v); }
+
+    int32_t vertex_in(int32_t polygon, int32_t v) {
+        const auto key = (static_cast<uint64_t>(static_cast<uint32_t>(polygon)) << 32) | static_cast<uint32_t>(v);
+        const auto [it, made] = local_.try_emplace(key, static_cast<int32_t>(mesh_.elements.vertices.size()));
+        if (made) mesh_.elements.vertices.push_back(tree_.vertices[v]);
+        return it->second;
     }
 
 private:
@@ -58,7 +75,7 @@ private:
         out.centre.push_back(centre);
         out.normal.push_back(n.normal);
         out.area.push_back(static_cast<float>(0.5 * glm::length(twice)));
-        out.polygon.push_back(build_.elements.polygon[n.patch]);
+        out.polygon.push_back(polygon_);
         out.reflectance.push_back(n.reflectance);
         out.emission.push_back(emission_);
         mesh_.radiance.push_back(n.radiance);
@@ -69,6 +86,8 @@ private:
     const std::vector<Rgb>& lamp_light_;
     LeafMesh& mesh_;
     Rgb emission_{0.0};
+    int32_t polygon_ = -1;
+    std::unordered_map<uint64_t, int32_t> local_;
     std::vector<int32_t> boundary_;
 };
 
@@ -85,12 +104,16 @@ void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
 
 LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light) {
     LeafMesh mesh;
-    Elements& out = mesh.elements;
-    out.vertices.assign(tree.vertices.begin(), tree.vertices.end());
-    out.corner_vertex.reserve(build.elements.corner_vertex.size());
-    for (int32_t v : build.elements.corner_vertex) out.corner_vertex.push_back(v < 0 ? -1 : tree.patch_vertex[v]);
     MeshWriter writer(tree, build, lamp_light, mesh);
     for (std::size_t p = 0; p < tree.patch_count; ++p) visit_leaves(tree, static_cast<int32_t>(p), writer);
+    // Input corners: build vertex -> (its polygon, welded tree vertex) -> output vertex.
+    const Elements& patches = build.elements;
+    std::vector<int32_t> polygon_of_vertex(patches.vertices.size(), -1);
+    for (std::size_t p = 0; p < patches.size(); ++p)
+        for (int k = 0; k < (patches.is_triangle(p) ? 3 : 4); ++k) polygon_of_vertex[patches.corners[p][k]] = patches.polygon[p];
+    mesh.elements.corner_vertex.reserve(patches.corner_vertex.size());
+    for (int32_t v : patches.corner_vertex)
+        mesh.elements.corner_vertex.push_back(v < 0 ? -1 : writer.vertex_in(polygon_of_vertex[v], tree.patch_vertex[v]));
     return mesh;
 }
 

@@ -1,0 +1,146 @@
+"""The hierarchical method through the artist's paths (the operator with the panel's settings, the
+batch command): a lamp close over a floor refines elements only near it and near the shadow,
+the baked copies have no T-vertex cracks and no colour seams, and the light matches the inverse
+square law. Scenes with fog refuse the method with a clear message and change nothing."""
+
+import math
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import scenes  # noqa: E402
+
+args = harness.arguments()
+addon = harness.install_addon(args.addon_zip)
+
+LAMP_HEIGHT = 1.0
+RHO = 0.8
+
+
+def floor_under_lamp():
+    """A 2 m floor (one face, rho 0.8) under a 10 W point lamp, a small card casting a shadow."""
+    scenes.clear_scene()
+    floor = scenes.mesh_object("Floor", [scenes.grid((-1, -1, 0), (2, 0, 0), (0, 2, 0), 1, 1) + (0,)],
+                               [scenes.diffuse("Floor", (RHO, RHO, RHO))])
+    scenes.mesh_object("Card", [scenes.grid((0.2, -0.1, 0.5), (0, 0.2, 0), (0.2, 0, 0), 1, 1) + (0,)],
+                       [scenes.diffuse("Card", (0.0, 0.0, 0.0))])
+    lamp = bpy.data.lights.new("Lamp", "POINT")
+    lamp.energy, lamp.shadow_soft_size = 10.0, 0.0
+    lamp_object = bpy.data.objects.new("Lamp", lamp)
+    lamp_object.location = (0.0, 0.0, LAMP_HEIGHT)
+    bpy.context.scene.collection.objects.link(lamp_object)
+    return floor
+
+
+def boundary_length(mesh):
+    """Total length of edges used by one polygon only: the outline of each face's elements; a
+    T-vertex inside a face adds the split edges on both sides of it."""
+    users = np.zeros(len(mesh.edges), dtype=np.int64)
+    loop_edges = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("edge_index", loop_edges)
+    np.add.at(users, loop_edges, 1)
+    vertices = np.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", vertices)
+    vertices = vertices.reshape(-1, 3)
+    edges = np.empty(2 * len(mesh.edges), dtype=np.int64)
+    mesh.edges.foreach_get("vertices", edges)
+    edges = edges.reshape(-1, 2)
+    lengths = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1)
+    return float(lengths[users == 1].sum())
+
+
+def test_operator_refines_where_the_light_changes_and_copies_have_no_cracks():
+    floor = floor_under_lamp()
+    settings = bpy.context.scene.radiosity
+    settings.quality = "CUSTOM"
+    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.01, 0.01
+    settings.target = "COPIES"
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    assert "hierarchical" in settings.last_report and "leaves" in settings.last_report, settings.last_report
+
+    copy = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name)
+    mesh = copy.data
+    # No cracks: the elements' outline is the face's own, 8 m (a T-vertex would add length).
+    assert math.isclose(boundary_length(mesh), 8.0, rel_tol=1e-5), boundary_length(mesh)
+    # No seams: every vertex carries one colour, whatever element's corner it is.
+    colors = harness.corner_colors(mesh, "Radiosity")
+    loop_vertex = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", loop_vertex)
+    low = np.full((len(mesh.vertices), 3), np.inf)
+    high = np.full((len(mesh.vertices), 3), -np.inf)
+    np.minimum.at(low, loop_vertex, colors)
+    np.maximum.at(high, loop_vertex, colors)
+    assert np.abs(high - low).max() < 1e-6, np.abs(high - low).max()
+
+    # Refined near the lamp and the shadow, coarse far off: far fewer elements than the finest
+    # level everywhere (2 m / 2^7 = 1.6 cm: 128 x 128 faces).
+    areas = np.array([p.area for p in mesh.polygons])
+    centres = np.array([p.center[:] for p in mesh.polygons])
+    assert len(areas) < 0.3 * 128 ** 2, len(areas)
+    near, far = np.linalg.norm(centres[:, :2], axis=1) < 0.3, np.linalg.norm(centres[:, :2], axis=1) > 0.9
+    assert areas[near].mean() < 0.25 * areas[far].mean(), (areas[near].mean(), areas[far].mean())
+
+    # The light: Cycles' point lamp of P watts has intensity P / (4 pi) per unit radiance
+    # (docs/design.md); L = rho I cos / (pi r^2) at vertices far from the shadow.
+    vertices = np.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", vertices)
+    vertices = vertices.reshape(-1, 3)
+    intensity = 10.0 / (4.0 * math.pi)
+    r2 = (vertices ** 2).sum(axis=1) - 2 * vertices[:, 2] * LAMP_HEIGHT + LAMP_HEIGHT ** 2
+    exact = RHO * intensity * LAMP_HEIGHT / np.sqrt(r2) / (math.pi * r2)
+    lit = (vertices[:, 0] < 0.3) & (np.abs(vertices[:, :2]).max(axis=1) < 0.99)  # the card shades x > 0.4
+    baked = high[lit, 0]
+    error = np.abs(baked - exact[lit]) / exact[lit]
+    print("%d copy faces, %d vertices checked: worst %.2f%%, mean %.2f%% from rho I cos / (pi r^2)"
+          % (len(areas), lit.sum(), 100 * error.max(), 100 * error.mean()))
+    assert np.median(error) < 0.01 and error.max() < 0.05, (np.median(error), error.max())
+
+
+def test_batch_command_bakes_hierarchically():
+    floor_under_lamp()
+    path = os.path.join(args.work, "hierarchical.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
+                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path,
+                          "--method", "HIERARCHICAL", "--element-size", "0.05", "--refine-tolerance", "0.02"],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert "hierarchical" in run.stdout and "leaves" in run.stdout, run.stdout
+
+
+def test_fog_refuses_the_method_and_changes_nothing():
+    floor = floor_under_lamp()
+    fog = bpy.data.materials.new("Fog")
+    fog.use_nodes = True
+    nodes = fog.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    volume = nodes.new("ShaderNodeVolumePrincipled")
+    fog.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    cube = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+            ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+            ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
+    corner, size = np.array([-0.2, -0.2, 0.1]), 0.2
+    scenes.mesh_object("Fog", [scenes.grid(corner + size * np.array(o), size * np.array(u), size * np.array(v), 1, 1)
+                               + (0,) for o, u, v in cube], [fog])
+    # Lit by an emitting face, not the lamp: lamps are not shot through fog at all (another message).
+    bpy.data.objects.remove(bpy.data.objects["Lamp"])
+    scenes.mesh_object("Panel", [scenes.grid((-0.1, -0.1, 0.6), (0, 0.2, 0), (0.2, 0, 0), 1, 1) + (0,)],
+                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 5.0)])
+    attributes_before = len(floor.data.color_attributes)
+    try:
+        addon.bake(bpy.context.scene, method="HIERARCHICAL")
+    except addon.pipeline.BakeError as error:
+        assert "hierarchical" in str(error) and "fog" in str(error), error
+    else:
+        raise AssertionError("a bake with fog and the hierarchical method must refuse")
+    assert len(floor.data.color_attributes) == attributes_before
+
+
+harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
+            test_batch_command_bakes_hierarchically, test_fog_refuses_the_method_and_changes_nothing)
