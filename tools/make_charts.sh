@@ -38,7 +38,17 @@ step_native() {
   /usr/bin/python3 "$charts/plot_native.py" "$charts"
 }
 
-STEPS=(native bake_vs_cycles)
+# The hierarchy (docs/hierarchy.md): accuracy per element against the uniform mesh on two scenes,
+# then time and peak memory against triangle count, each bake in its own process, and a 1e6
+# triangle bake cancelled after 20 s (about 15 minutes in all on 2 cores).
+step_hierarchy() {
+  cmake --build "$build" -j "$(nproc)" --target radiosity_hierarchy_charts >/dev/null
+  "$build/native/bench/radiosity_hierarchy_charts" accuracy "$charts"
+  "$build/native/bench/radiosity_hierarchy_charts" scaling "$charts"
+  /usr/bin/python3 "$charts/plot_hierarchy.py" "$charts"
+}
+
+STEPS=(native bake_vs_cycles hierarchy)
 
 "$root/tools/build.sh"
 ensure_plotting
