@@ -26,6 +26,15 @@ HierarchySettings settings(float min_size, double refine_tolerance) {
     return s;
 }
 
+/// `s` with a point lamp of unit intensity at `position`.
+HierarchySettings with_lamp(HierarchySettings s, const Vec3& position) {
+    PointLight lamp;
+    lamp.position = position;
+    lamp.intensity = Rgb(1.0);
+    s.lights.points.push_back(lamp);
+    return s;
+}
+
 /// Area-weighted mean radiance (red) per input polygon.
 std::map<int32_t, double> polygon_means(const Elements& e, const std::vector<Rgb>& radiance) {
     std::map<int32_t, double> power, area;
@@ -61,11 +70,8 @@ TEST(Hierarchy, PointLampLightsTheFloorExactlyAndRefinesAtTheShadowEdge) {
     test::SceneArrays scene;
     scene.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(0.5));
     scene.add_quad({-0.1f, -0.1f, 0.5f}, {-0.1f, 0.1f, 0.5f}, {0.1f, 0.1f, 0.5f}, {0.1f, -0.1f, 0.5f}, Rgb(0.0));
-    HierarchySettings s = settings(0.01f, 0.003);
-    PointLight lamp;
-    lamp.position = Vec3(0, 0, 1);
-    lamp.intensity = Rgb(1.0);
-    s.lights.points.push_back(lamp);
+    const HierarchySettings s = with_lamp(settings(0.01f, 0.003), Vec3(0, 0, 1));
+    const PointLight& lamp = s.lights.points[0];
     const HierarchyResult r = bake_hierarchical(scene.input(), s);
 
     // The card's shadow on the floor is the square |x|, |y| < 0.2 (twice the card: half-way up).
@@ -121,12 +127,7 @@ TEST(Hierarchy, OutputMeshHasNoTVertices) {
     test::SceneArrays scene;
     scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
     scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
-    HierarchySettings s = settings(0.02f, 0.01);
-    PointLight lamp;
-    lamp.position = Vec3(0.5f, 0.5f, 0.1f);
-    lamp.intensity = Rgb(1.0);
-    s.lights.points.push_back(lamp);
-    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(0.5f, 0.5f, 0.1f)));
     const Elements& out = r.output;
     ASSERT_GT(out.size(), 50u);
     std::size_t hanging = 0;

@@ -114,20 +114,15 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     if (patch_count) root = build_cluster(0, static_cast<int32_t>(patch_count), -1);
     cluster_count = nodes.size() - patch_count;
 
-    for (std::size_t l = 0; l < lights.points.size(); ++l) {
+    auto add_lamp = [&](Kind kind, std::size_t index) -> Node& {
+        lamp_nodes.push_back(static_cast<int32_t>(nodes.size()));
         Node& n = *nodes.grow_by(1);
-        n.kind = Kind::PointLamp;
-        n.lamp = static_cast<int32_t>(l);
-        n.centre = lights.points[l].position;
-        lamp_nodes.push_back(static_cast<int32_t>(nodes.size() - 1));
-    }
-    for (std::size_t l = 0; l < lights.suns.size(); ++l) {
-        Node& n = *nodes.grow_by(1);
-        n.kind = Kind::Sun;
-        n.lamp = static_cast<int32_t>(l);
-        n.normal = lights.suns[l].direction;
-        lamp_nodes.push_back(static_cast<int32_t>(nodes.size() - 1));
-    }
+        n.kind = kind;
+        n.lamp = static_cast<int32_t>(index);
+        return n;
+    };
+    for (std::size_t l = 0; l < lights.points.size(); ++l) add_lamp(Kind::PointLamp, l).centre = lights.points[l].position;
+    for (std::size_t l = 0; l < lights.suns.size(); ++l) add_lamp(Kind::Sun, l).normal = lights.suns[l].direction;
 }
 
 int32_t Tree::build_cluster(int32_t begin, int32_t end, int32_t parent) {
