@@ -70,7 +70,8 @@ def uniform_elements_at(error, uniform):
 
 def accuracy(rows, png, txt):
     scenes = sorted({r["scene"] for r in rows})
-    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 5))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 5), squeeze=False)
+    axes = axes[0]
     out = []
     for ax, scene in zip(axes, scenes):
         mine = [r for r in rows if r["scene"] == scene]
@@ -90,13 +91,15 @@ def accuracy(rows, png, txt):
         ax.set_ylabel("RMS corner-colour error / mean radiance")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
-        out.append(f"{scene}: refine_tolerance, leaves, output elements, rms, uniform elements at that rms, "
-                   f"ratio to leaves, ratio to output elements")
-        for r in hier:
-            equal, note = uniform_elements_at(float(r["rms"]), uniform)
-            out.append(f"  {r['parameter']:>6} {int(r['elements']):>8} {int(r['output_elements']):>8} "
-                       f"{float(r['rms']):.4f} {equal:>10.0f}{note} {equal / int(r['elements']):6.2f} "
-                       f"{equal / int(r['output_elements']):6.2f}")
+        for column, reference in (("rms", "hierarchy"), ("rms_vs_uniform_ref", "uniform")):
+            points = [(int(r["elements"]), float(r[column])) for r in mine if r["method"] == "uniform"]
+            out.append(f"{scene} against the {reference} reference: refine_tolerance, leaves, output elements, rms, "
+                       f"uniform elements at that rms, ratio to leaves, ratio to output elements")
+            for r in hier:
+                equal, note = uniform_elements_at(float(r[column]), points)
+                out.append(f"  {r['parameter']:>6} {int(r['elements']):>8} {int(r['output_elements']):>8} "
+                           f"{float(r[column]):.4f} {equal:>10.0f} {equal / int(r['elements']):6.2f} "
+                           f"{equal / int(r['output_elements']):6.2f}{note}")
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     with open(txt, "w") as f:
