@@ -31,14 +31,25 @@ void check(const HierarchySettings& s) {
 HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings, const ProgressFn& progress) {
     check(settings);
     HierarchyResult result;
+    // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
+    auto stage = [&](std::size_t done) {
+        Progress p;
+        p.phase = "elements";
+        p.done = done;
+        p.total = 3;
+        if (progress && !progress(p)) throw Cancelled();
+    };
     auto start = Clock::now();
     result.build = build_elements(input, 0.0f, settings.limits);
     const Elements& patches = result.build.elements;
+    stage(1);
     hr::Tree tree(result.build, settings.lights, settings.min_element_size, settings.limits.max_elements);
+    stage(2);
     std::vector<std::array<int32_t, 4>> patch_corners(tree.patch_count);
     for (std::size_t p = 0; p < tree.patch_count; ++p) patch_corners[p] = tree.nodes[p].corners;
     const hr::Visibility visibility(std::vector<Vec3>(tree.vertices.begin(), tree.vertices.end()), patch_corners,
                                     tree.scene_size);
+    stage(3);
     result.seconds_elements = seconds_since(start);
 
     hr::Refiner refiner(tree, visibility);
