@@ -107,6 +107,36 @@ TEST(Hierarchy, PointLampLightsTheFloorExactlyAndRefinesAtTheShadowEdge) {
     EXPECT_GE(far_size, 4.0f * edge_size);
 }
 
+TEST(Hierarchy, SunLightsAFloorUniformlyExceptInTheShadowOfABlock) {
+    // Sun at 60 degrees from the zenith, irradiance 2 on a plane facing it: a bare floor gets
+    // L = rho E cos / pi everywhere the block does not shade (exact: no other surface lights it).
+    test::SceneArrays scene;
+    scene.add_quad({-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}, Rgb(0.5));
+    scene.add_quad({-0.2f, -0.2f, 0.5f}, {-0.2f, 0.2f, 0.5f}, {0.2f, 0.2f, 0.5f}, {0.2f, -0.2f, 0.5f}, Rgb(0.0));
+    HierarchySettings s = settings(0.05f, 0.01);
+    SunLight sun;
+    const float zenith = float(M_PI) / 3.0f;
+    sun.direction = Vec3(std::sin(zenith), 0.0f, -std::cos(zenith));  // travelling towards +x, down
+    sun.irradiance = Rgb(2.0);
+    s.lights.suns.push_back(sun);
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    // The card at z = 0.5 casts its shadow 0.5 tan(60 deg) = 0.87 m towards +x.
+    const double lit = 0.5 * 2.0 * std::cos(zenith) / M_PI;
+    std::size_t checked = 0;
+    for (std::size_t e = 0; e < r.output.size(); ++e) {
+        if (r.output.polygon[e] != 0) continue;
+        const Vec3 c = r.output.centre[e];
+        const float margin = std::sqrt(r.output.area[e]);
+        const float x = c.x - 0.866f;  // the shadow's centre
+        const bool inside = std::abs(x) < 0.2f - margin && std::abs(c.y) < 0.2f - margin;
+        const bool outside = std::abs(x) > 0.2f + margin || std::abs(c.y) > 0.2f + margin;
+        if (inside) EXPECT_NEAR(r.output_radiance[e].r, 0.0, 1e-12) << c.x << ", " << c.y;
+        if (outside) EXPECT_NEAR(r.output_radiance[e].r, lit, 1e-6 * lit) << c.x << ", " << c.y;
+        checked += inside || outside;
+    }
+    EXPECT_GT(checked, 100u);
+}
+
 TEST(Hierarchy, CornellBoxAgreesWithTheUniformBake) {
     const auto cornell = test::cornell_box();
     BakeSettings uniform;

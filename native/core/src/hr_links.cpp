@@ -200,6 +200,13 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     else Q[0] = s.centre;
 
     const PointLight* lamp = s.kind == Kind::PointLamp ? &tree_.lights.points[s.lamp] : nullptr;
+    if ((lamp || sun) && r.kind == Kind::Cluster) {
+        // A lamp's light reaches each patch on its own link: a cluster's few sample rays would
+        // miss most shadows in it, and its children would all get the same light.
+        e.useful = true;
+        e.link.uncertainty = std::numeric_limits<float>::max();
+        return e;
+    }
     auto transfer = [&](const Vec3& x, const Vec3& q) {  // per unit of the source's intensity, x from q
         const Vec3 d = sun ? -s.normal : q - x;
         const double distance2 = sun ? 1.0 : glm::dot(d, d);
@@ -234,15 +241,17 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     }
     if (!(highest > 0.0)) return e;
 
-    // Coarse element receivers get 16 rays from jittered points (a small occluder hides among 4).
-    std::array<Vec3, 16> from;
-    int from_count = np;
+    // Coarse element receivers get rays from jittered points: 16, or for a lamp one per cell of
+    // about 4 minimum element sizes (up to 16 x 16), since its light may be even over the whole
+    // receiver and nothing but these rays would find a small shadow on it.
+    std::vector<Vec3> from(P.begin(), P.begin() + np);
     if (r.is_element() && tree_.can_split(r)) {
-        jittered_points(tree_, r, 4, seed, from.data());
-        from_count = 16;
-    } else {
-        std::copy(P.begin(), P.begin() + np, from.begin());
+        const bool lamp_source = s.kind == Kind::PointLamp || sun;
+        const int grid = lamp_source ? std::clamp(int(std::ceil(r.longest_edge / (4.0f * tree_.min_element_size()))), 4, 16) : 4;
+        from.resize(std::size_t(grid) * grid);
+        jittered_points(tree_, r, grid, seed, from.data());
     }
+    const int from_count = static_cast<int>(from.size());
     const int rays = std::max(from_count, nq);
     int clear = 0;
     for (int k = 0; k < rays; ++k) {

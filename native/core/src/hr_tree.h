@@ -102,6 +102,7 @@ public:
     /// it is too small to split (its longest edge is below the minimum element size).
     bool subdivide(int32_t e);
     bool can_split(const Node& n) const;
+    float min_element_size() const { return min_element_size_; }
     /// Whether element `e` has been split (safe while other threads split).
     bool has_children(int32_t e);
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
