@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 
@@ -59,6 +60,19 @@ Variation variation(const double* at, int probe_count) {
     if (corners == 4) v.nonlinear += std::abs(at[0] - at[1] + at[2] - at[3]);
     v.nonlinear = std::min(v.nonlinear, v.spread);
     return v;
+}
+
+/// A seed from a pair's geometry, not from node ids (which depend on the order threads made
+/// the nodes in): the same scene traces the same rays every run.
+uint32_t pair_seed(const Node& r, const Node& s) {
+    uint32_t h = 0x811c9dc5U;
+    for (const Node* n : {&r, &s})
+        for (float x : {n->centre.x, n->centre.y, n->centre.z, n->area, n->radius}) {
+            uint32_t bits;
+            std::memcpy(&bits, &x, sizeof bits);
+            h = mix(h ^ bits);
+        }
+    return h;
 }
 
 }  // namespace
@@ -125,8 +139,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
 
     // Visibility from jittered points, so that a fraction errs at random, not the same way on
     // every link (fixed points would see the same gap or the same occluder every time).
-    const uint32_t seed = mix(static_cast<uint32_t>(&r - &tree_.nodes[0]) * 73856093U ^
-                              static_cast<uint32_t>(&s - &tree_.nodes[0]) * 19349663U);
+    const uint32_t seed = pair_seed(r, s);
     std::array<Vec3, 16> from, to;
     // Each ray counts with the kernel cos cos / d^2 of its ends, so that parts of s behind r's
     // plane (or of r behind s's) neither hide nor show anything.
@@ -190,8 +203,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
 Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) const {
     Estimate e;
     const bool sun = s.kind == Kind::Sun;
-    const uint32_t seed = mix(static_cast<uint32_t>(&r - &tree_.nodes[0]) * 73856093U ^
-                              static_cast<uint32_t>(&s - &tree_.nodes[0]) * 19349663U);
+    const uint32_t seed = pair_seed(r, s);
     std::array<Vec3, 4> P, Q;
     const int np = r.is_element() ? element_samples(tree_, r, P) : cluster_samples(r, seed, false, P);
     int nq = 1;
@@ -310,7 +322,7 @@ void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& o
     // Pairs too close for their estimate split whatever the threshold (even before the first
     // solve, when every source but the lamps and emitters is still dark).
     const bool must_split = e.link.uncertainty == std::numeric_limits<float>::max();
-    const double link_error = must_split ? 0.0 : error(r, e.link, tree_.has_children(receiver));
+    const double link_error = must_split ? 0.0 : error(r, e.link, split_at_start(receiver));
     if (split || must_split || link_error > threshold) {
         // Split the end the error comes from (an element's factor towards a polygon is exact over
         // the source, so only the receiver's side errs); the other end only if that one cannot.
@@ -340,7 +352,17 @@ void Refiner::link_pair_within(int32_t cluster, double threshold, Output& out, s
     link(b, a, threshold, out, rays);
 }
 
+void Refiner::take_split_snapshot() {
+    split_.assign(tree_.nodes.size(), 0);
+    for (std::size_t n = 0; n < split_.size(); ++n) split_[n] = tree_.nodes[n].child_count > 0;
+}
+
+bool Refiner::split_at_start(int32_t node) const {
+    return static_cast<std::size_t>(node) < split_.size() && split_[node];
+}
+
 void Refiner::link_initial(const ProgressFn& progress) {
+    take_split_snapshot();
     // Every cluster's two children see each other; together these pairs cover every pair of
     // patches once in each direction. Lamps light the whole scene through the root.
     std::vector<int32_t> jobs;
@@ -364,8 +386,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
     std::vector<int32_t> receivers;
     for (std::size_t n = 0; n < tree_.nodes.size(); ++n)
         if (!tree_.nodes[n].links.empty()) receivers.push_back(static_cast<int32_t>(n));
-    std::vector<uint8_t> split(receivers.size());  // taken before any thread splits more
-    for (std::size_t i = 0; i < receivers.size(); ++i) split[i] = tree_.nodes[receivers[i]].child_count > 0;
+    take_split_snapshot();
     tbb::enumerable_thread_specific<Output> outputs;
     tbb::enumerable_thread_specific<std::size_t> rays(0), refined(0);
     detail::parallel_rows(receivers.size(), 16, 0, progress, [&](std::size_t i) {
@@ -377,7 +398,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         std::vector<std::pair<double, std::size_t>> errors;
         double total = 0.0;
         for (std::size_t k = 0; k < r.links.size(); ++k) {
-            errors.emplace_back(error(r, r.links[k], split[i]), k);
+            errors.emplace_back(error(r, r.links[k], split_at_start(receiver)), k);
             total += errors.back().first;
         }
         if (total <= threshold) return true;

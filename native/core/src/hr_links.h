@@ -50,8 +50,14 @@ private:
     /// Sample points of a cluster: centres of its patches, picked by power or by area.
     int cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const;
 
+    /// Which nodes had children when the pass began. Decisions read this, not the live tree,
+    /// which other threads split meanwhile: the same scene refines the same way every run.
+    void take_split_snapshot();
+    bool split_at_start(int32_t node) const;
+
     Tree& tree_;
     const Visibility& visibility_;
+    std::vector<uint8_t> split_;
     std::size_t rays_ = 0;
 };
 

@@ -173,12 +173,6 @@ bool Tree::can_split(const Node& n) const {
     return n.is_element() && n.longest_edge >= 2.0f * min_element_size_;
 }
 
-bool Tree::has_children(int32_t e) {
-    if (nodes[e].kind == Kind::Cluster) return true;
-    std::lock_guard<std::mutex> lock(split_locks_[static_cast<std::size_t>(e) % split_locks_.size()]);
-    return nodes[e].child_count > 0;
-}
-
 int32_t Tree::midpoint(int32_t a, int32_t b) {
     const auto key = std::minmax(a, b);
     std::lock_guard<std::mutex> lock(midpoint_lock_);

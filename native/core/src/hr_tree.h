@@ -103,8 +103,6 @@ public:
     bool subdivide(int32_t e);
     bool can_split(const Node& n) const;
     float min_element_size() const { return min_element_size_; }
-    /// Whether element `e` has been split (safe while other threads split).
-    bool has_children(int32_t e);
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
     int32_t midpoint(int32_t a, int32_t b);
     /// The vertex at a - b's midpoint if an element split that edge, else -1 (after refinement).
