@@ -29,17 +29,16 @@ uint32_t mix(uint32_t h) {  // a small integer hash (for spreading cluster sampl
     return h;
 }
 
-struct Spread {
-    double low = std::numeric_limits<double>::max(), high = 0.0, sum = 0.0;
+/// Samples of a transfer: their mean and largest value.
+struct Samples {
+    double high = 0.0, sum = 0.0;
     int count = 0;
     void add(double v) {
-        low = std::min(low, v);
         high = std::max(high, v);
         sum += v;
         ++count;
     }
     double mean() const { return count ? sum / count : 0.0; }
-    double width() const { return count ? high - low : 0.0; }
 };
 
 /// How a transfer sampled at an element's probes (element_probes: inset corners, then the
@@ -128,7 +127,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     auto factor_at = [&](const Vec3& x) {
         return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
     };
-    Spread F;  // the mean over r (Gauss points)
+    Samples F;  // over r's Gauss points
     for (int k = 0; k < np; ++k) F.add(factor_at(P[k]));
     std::array<Vec3, 5> probes;
     std::array<double, 5> at{};
@@ -232,7 +231,7 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     auto transfer_at = [&](const Vec3& x) { return transfer(x, s.centre); };
     // The mean over pairs of points of both ends: 1 / d^2 averaged over an extended source (or
     // receiver) exceeds its value at the centres, which would lose light all over the scene.
-    Spread g;
+    Samples g;
     for (int k = 0; k < np; ++k) {
         double sum = 0.0;
         for (int j = 0; j < nq; ++j) sum += transfer(P[k], Q[j]);

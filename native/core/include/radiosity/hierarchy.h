@@ -5,11 +5,13 @@
 /// The scene's polygons are the patches. Above them sits a binary tree of clusters (a bounding
 /// volume hierarchy); below them each patch splits into four elements, recursively, down to
 /// `min_element_size`. Light moves along links: a receiver node gathers from a source node at
-/// the coarsest pair of levels whose estimated error stays below `refine_tolerance` times the
-/// scene's mean radiance (Hanrahan et al. 1991, "BF refinement"; clusters after Smits et al.
-/// 1994 and Sillion 1995). The estimate is the receiver's reflectance times the spread of the
-/// transfer over the receiver (sampled at its corners and centre: gradients, near field) times
-/// the source's radiance, and any partly visible pair (a shadow boundary) counts as uncertain.
+/// the coarsest pair of levels whose estimated errors, summed over the receiver's links, stay
+/// below `refine_tolerance` times the scene's mean reflected radiance (Hanrahan et al. 1991, "BF
+/// refinement"; clusters after Smits et al. 1994 and Sillion 1995). The estimate is the
+/// receiver's reflectance times how the transfer departs from linear over the receiver (its
+/// whole spread once the receiver has children), probed at its corners and centre, times the
+/// source's radiance; a partly visible pair (a shadow boundary) counts as uncertain, and so does
+/// the spread of the source's own radiance where it is partly hidden or near. docs/design.md.
 ///
 /// Factors: element to element, Lambert's contour integral from points of the receiver to the
 /// source polygon (exact unoccluded, so near pairs need no special case) times the visible
