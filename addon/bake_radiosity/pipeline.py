@@ -79,6 +79,10 @@ class BakeJob:
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
         self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
         self.warnings += self._skipped_warnings()
+        hierarchy = self.result.get("hierarchy")
+        if hierarchy and hierarchy["leaf_cap_reached"]:
+            self.warnings.append("Refinement stopped at the element cap (%d elements) before the light was followed "
+                                 "everywhere: raise Element Size or Refinement" % hierarchy["leaves"])
         return self.result
 
     def element_layout(self):

@@ -228,6 +228,17 @@ TEST(Hierarchy, CancelStopsTheBake) {
     EXPECT_GT(calls, 0u);
 }
 
+TEST(Hierarchy, SceneOfDegeneratePolygonsBakesToNothing) {
+    // Every polygon skipped (NaN, zero area), a lamp still there: no elements, no crash.
+    test::SceneArrays scene;
+    scene.add_polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, Rgb(0.5), Rgb(0.0));
+    scene.add_polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, std::nanf("")}}, Rgb(0.5), Rgb(1.0));
+    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.1f, 0.01), Vec3(0, 0, 1)));
+    EXPECT_EQ(r.output.size(), 0u);
+    EXPECT_EQ(r.build.skipped.size(), 2u);
+    for (const Rgb& c : r.colors.input_corner) EXPECT_EQ(c, Rgb(0.0));
+}
+
 TEST(Hierarchy, BadSettingsAreInputErrors) {
     const auto box = test::closed_box(Vec3(1), Rgb(0.5), Rgb(1.0));
     EXPECT_THROW(bake_hierarchical(box.input(), settings(0.0f, 0.01)), InputError);

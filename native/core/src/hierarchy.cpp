@@ -71,7 +71,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
         result.converged = sweep.converged;
         ++round;
         if (round >= settings.max_rounds) break;
-        const double scale = hr::mean_reflected_radiance(tree);
+        const double scale = hr::reference_radiance(tree);
         if (!(scale > 0.0)) break;  // nothing lit: nothing to refine for
         start = Clock::now();
         const std::size_t refined = refiner.refine(settings.refine_tolerance * scale, progress);

@@ -367,7 +367,8 @@ void Refiner::link_initial(const ProgressFn& progress) {
     std::vector<int32_t> jobs;
     for (std::size_t n = tree_.patch_count; n < tree_.patch_count + tree_.cluster_count; ++n)
         jobs.push_back(static_cast<int32_t>(n));
-    for (int32_t lamp : tree_.lamp_nodes) jobs.push_back(-1 - lamp);
+    if (tree_.root >= 0)  // every polygon may have been skipped (degenerate): nothing to light
+        for (int32_t lamp : tree_.lamp_nodes) jobs.push_back(-1 - lamp);
     tbb::enumerable_thread_specific<Output> outputs;
     tbb::enumerable_thread_specific<std::size_t> rays(0);
     const double no_refinement = std::numeric_limits<double>::infinity();

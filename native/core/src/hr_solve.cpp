@@ -182,14 +182,20 @@ SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vecto
     return result;
 }
 
-double mean_reflected_radiance(const Tree& tree) {
-    double power = 0.0, area = 0.0;
-    for (std::size_t i = 0; i < tree.patch_count; ++i) {
+double reference_radiance(const Tree& tree) {
+    double power = 0.0, area = 0.0, brightest = 0.0;
+    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
         const Node& n = tree.nodes[i];
-        power += double(n.area) * max_channel(glm::max(n.radiance - n.emission, Rgb(0.0)));
-        area += n.area;
+        if (!n.is_element()) continue;
+        const double reflected = max_channel(glm::max(n.radiance - n.emission, Rgb(0.0)));
+        if (i < tree.patch_count) {
+            power += double(n.area) * reflected;
+            area += n.area;
+        }
+        if (n.is_leaf()) brightest = std::max(brightest, reflected);
     }
-    return area > 0.0 ? power / area : 0.0;
+    const double mean = area > 0.0 ? power / area : 0.0;
+    return std::max(mean, kBrightestShare * brightest);
 }
 
 }  // namespace radiosity::hr

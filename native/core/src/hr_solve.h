@@ -26,8 +26,11 @@ SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vecto
 /// for the energy account (a lamp's first reflection counts as emitted, as in bake()).
 std::vector<Rgb> lamp_light(Tree& tree);
 
-/// Area-weighted mean reflected radiance L - E of the scene, largest channel: the refinement's
-/// scale (what the bake shows; emitters would swamp it, a bright small lamp most of all).
-double mean_reflected_radiance(const Tree& tree);
+/// The refinement's scale: the area-weighted mean reflected radiance L - E of the scene, largest
+/// channel (what the bake shows; emitters would swamp it, a bright small lamp most of all), but
+/// at least a thousandth of the brightest leaf's: a small lamp over a vast plane would otherwise
+/// make the mean so small that the whole plane refines to the cap.
+double reference_radiance(const Tree& tree);
+constexpr double kBrightestShare = 1e-3;
 
 }  // namespace radiosity::hr
