@@ -18,8 +18,6 @@
 namespace radiosity::hr {
 namespace {
 
-double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
-
 uint32_t mix(uint32_t h) {  // a small integer hash (for spreading cluster samples)
     h ^= h >> 16;
     h *= 0x7feb352dU;
@@ -75,6 +73,16 @@ uint32_t pair_seed(const Node& r, const Node& s) {
 }
 
 }  // namespace
+
+Refiner::Estimate Refiner::must_split(bool source_side) {
+    Estimate e;
+    e.useful = true;
+    e.source_side = source_side;
+    e.link.uncertainty = std::numeric_limits<float>::max();
+    return e;
+}
+
+bool Refiner::is_must_split(const Link& link) { return link.uncertainty == std::numeric_limits<float>::max(); }
 
 Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
     switch (source.kind) {
@@ -202,6 +210,11 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
 Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) const {
     Estimate e;
     const bool sun = s.kind == Kind::Sun;
+    if ((s.kind == Kind::PointLamp || sun) && r.kind == Kind::Cluster) {
+        // A lamp's light reaches each patch on its own link: a cluster's few sample rays would
+        // miss most shadows in it, and its children would all get the same light.
+        return must_split();
+    }
     const uint32_t seed = pair_seed(r, s);
     std::array<Vec3, 4> P, Q;
     const int np = r.is_element() ? element_samples(tree_, r, P) : cluster_samples(r, seed, false, P);
@@ -211,13 +224,6 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     else Q[0] = s.centre;
 
     const PointLight* lamp = s.kind == Kind::PointLamp ? &tree_.lights.points[s.lamp] : nullptr;
-    if ((lamp || sun) && r.kind == Kind::Cluster) {
-        // A lamp's light reaches each patch on its own link: a cluster's few sample rays would
-        // miss most shadows in it, and its children would all get the same light.
-        e.useful = true;
-        e.link.uncertainty = std::numeric_limits<float>::max();
-        return e;
-    }
     auto transfer = [&](const Vec3& x, const Vec3& q) {  // per unit of the source's intensity, x from q
         const Vec3 d = sun ? -s.normal : q - x;
         const double distance2 = sun ? 1.0 : glm::dot(d, d);
@@ -246,9 +252,7 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     }
     const double highest = std::max(g.high, probe_count ? *std::max_element(at.begin(), at.begin() + probe_count) : 0.0);
     if (!std::isfinite(highest)) {  // a point source on the receiver: split, or no link
-        e.useful = true;
-        e.link.uncertainty = std::numeric_limits<float>::max();
-        return e;
+        return must_split();
     }
     if (!(highest > 0.0)) return e;
 
@@ -277,12 +281,7 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     const double distance = sun ? std::numeric_limits<double>::infinity() : glm::length(s.centre - r.centre);
     auto extent = [](const Node& n) { return n.kind == Kind::Cluster || n.is_element() ? double(n.radius) : 0.0; };
     const double r_extent = r.is_element() ? 0.0 : extent(r), s_extent = extent(s);
-    e.source_side = s_extent >= r_extent && s_extent > 0.0;
-    if (distance < 2.0 * (r_extent + s_extent)) {
-        e.useful = true;
-        e.link.uncertainty = std::numeric_limits<float>::max();
-        return e;
-    }
+    if (distance < 2.0 * (r_extent + s_extent)) return must_split(s_extent >= r_extent && s_extent > 0.0);
     const Variation v = probe_count && tree_.can_split(r) ? variation(at.data(), probe_count) : Variation{};
     e.link.steps = static_cast<float>(max_channel(r.reflectance) * (v.spread - v.nonlinear));
     const double receiver_part = v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0));
@@ -320,9 +319,9 @@ void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& o
     const Node& s = tree_.nodes[source];
     // Pairs too close for their estimate split whatever the threshold (even before the first
     // solve, when every source but the lamps and emitters is still dark).
-    const bool must_split = e.link.uncertainty == std::numeric_limits<float>::max();
-    const double link_error = must_split ? 0.0 : error(r, e.link, split_at_start(receiver));
-    if (split || must_split || link_error > threshold) {
+    const bool too_near = is_must_split(e.link);
+    const double link_error = too_near ? 0.0 : error(r, e.link, split_at_start(receiver));
+    if (split || too_near || link_error > threshold) {
         // Split the end the error comes from (an element's factor towards a polygon is exact over
         // the source, so only the receiver's side errs); the other end only if that one cannot.
         const bool r_splits = r.kind == Kind::Cluster || tree_.can_split(r);

@@ -37,6 +37,11 @@ private:
     };
     using Output = std::vector<std::pair<int32_t, Link>>;
 
+    /// A pair whose estimate says nothing (too near, or a lamp over a cluster): it splits
+    /// whatever the threshold (the source first when `source_side`); marked by the largest
+    /// uncertainty.
+    static Estimate must_split(bool source_side = false);
+    static bool is_must_split(const Link& link);
     Estimate estimate(int32_t receiver, int32_t source) const;
     Estimate estimate_elements(const Node& r, const Node& s) const;
     Estimate estimate_point_source(const Node& r, const Node& s) const;

@@ -61,8 +61,6 @@ void set_emitter(Node& n) {
     for (int c = 0; c < 3; ++c) n.emitter.moment[c] = n.emitter.power[c] * glm::dvec3(n.normal);
 }
 
-double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
-
 void set_range(const Tree& tree, Node& n) {
     if (n.is_leaf()) {
         n.radiance_low = n.radiance_high = static_cast<float>(max_channel(n.radiance));
@@ -77,23 +75,34 @@ void set_range(const Tree& tree, Node& n) {
     }
 }
 
+/// Passes a cluster's light on to its children: the cluster's own cube plus the one from above
+/// goes on to child clusters; child elements read it at their normals.
+/// `visit(child, cube, gathered)` for each child.
+template <typename Visit>
+void pass_down(const Tree& tree, const Node& cluster, const AmbientCube& cube_above, Visit visit) {
+    AmbientCube cube = cluster.cube;
+    for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
+    for (int k = 0; k < cluster.child_count; ++k) {
+        const int32_t c = child(cluster, k);
+        const Node& below = tree.nodes[c];
+        if (below.is_element()) visit(c, AmbientCube{}, read_cube(cube, below.normal));
+        else visit(c, cube, Rgb(0.0));
+    }
+}
+
 /// Pushes what the ancestors gathered (`cube` for clusters, `gathered` for elements) down to the
 /// leaves, updates them when `update`, and pulls radiance and emitters back up.
 void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb& gathered_above, bool update,
                Totals& totals) {
     Node& n = tree.nodes[id];
     if (n.kind == Kind::Cluster) {
-        AmbientCube cube = n.cube;
-        for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
         n.emitter = Emitter{};
-        for (int k = 0; k < n.child_count; ++k) {
-            const int32_t c = child(n, k);
+        pass_down(tree, n, cube_above, [&](int32_t c, const AmbientCube& cube, const Rgb& gathered) {
+            push_pull(tree, c, cube, gathered, update, totals);
             const Node& below = tree.nodes[c];
-            if (below.is_element()) push_pull(tree, c, AmbientCube{}, read_cube(cube, below.normal), update, totals);
-            else push_pull(tree, c, cube, Rgb(0.0), update, totals);
             n.emitter.power += below.emitter.power;
             for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += below.emitter.moment[ch];
-        }
+        });
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;
@@ -125,14 +134,9 @@ void push(const Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb
           std::vector<Rgb>& total) {
     const Node& n = tree.nodes[id];
     if (n.kind == Kind::Cluster) {
-        AmbientCube cube = n.cube;
-        for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
-        for (int k = 0; k < n.child_count; ++k) {
-            const int32_t c = child(n, k);
-            const Node& below = tree.nodes[c];
-            if (below.is_element()) push(tree, c, AmbientCube{}, read_cube(cube, below.normal), total);
-            else push(tree, c, cube, Rgb(0.0), total);
-        }
+        pass_down(tree, n, cube_above, [&](int32_t c, const AmbientCube& cube, const Rgb& gathered) {
+            push(tree, c, cube, gathered, total);
+        });
         return;
     }
     total[id] = gathered_above + n.gathered;

@@ -7,6 +7,7 @@
 
 #include <tbb/concurrent_vector.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -75,6 +76,9 @@ struct Node {
     bool is_leaf() const { return child_count == 0; }
     bool is_triangle() const { return corners[3] < 0; }
 };
+
+/// The largest of the three channels.
+inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
 /// Child k of a node with children.
 inline int32_t child(const Node& n, int k) {
