@@ -6,6 +6,7 @@
 #include "scene_arrays.h"
 
 #include "radiosity/bake.h"
+#include "radiosity/resolution.h"
 
 #include <pybind11/stl.h>
 
@@ -62,6 +63,23 @@ py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& fac
     return out;
 }
 
+int recommended_resolution_arrays(const Array<float>& element_area, const Array<float>& element_vertices,
+                                  double cells) {
+    require_shape(element_area, "element_area", -1, 0);
+    require_shape(element_vertices, "element_vertices", -1, 3);
+    if (!(cells > 0.0)) throw py::value_error("cells must be > 0");
+    // recommended_resolution reads only the count (size() is centre.size()), the areas and the
+    // vertices' bounding box.
+    Elements elements;
+    const float* area = element_area.data();
+    elements.area.assign(area, area + element_area.shape(0));
+    elements.centre.resize(elements.area.size());
+    const float* v = element_vertices.data();
+    for (py::ssize_t i = 0; i < element_vertices.shape(0); ++i)
+        elements.vertices.emplace_back(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    return recommended_resolution(elements, cells);
+}
+
 }  // namespace
 
 void bind_bake(py::module_& m) {
@@ -83,6 +101,10 @@ void bind_bake(py::module_& m) {
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",
           "element_count"_a, "resolution"_a);
+    m.def("recommended_resolution", &recommended_resolution_arrays,
+          "Even hemi-cube resolution in [32, 1024] at which the 10th percentile of element_area, seen head-on "
+          "from half the diagonal of element_vertices' bounding box, covers `cells` cells: 2 d sqrt(cells / A).",
+          "element_area"_a, "element_vertices"_a, "cells"_a = 8.0);
     m.attr("DEFAULT_MATRIX_BUDGET_BYTES") = BakeSettings().matrix_budget_bytes;
 }
 

@@ -104,5 +104,48 @@ class StabilitySettingsTest(unittest.TestCase):
         self.assertEqual(_core.bake(*strip, resolution=16, max_element_aspect=4.0)["elements"], 25)
 
 
+class RecommendedResolutionTest(unittest.TestCase):
+    """N = 2 d sqrt(cells / A) for the 10th percentile area A at half the bounding box diagonal d,
+    even, within [32, 1024] (docs/stability.md), computed here from the geometry."""
+
+    @staticmethod
+    def cube(element_size):
+        _, offsets, corners, reflectance, emission = box_arrays()
+        v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]],
+                     dtype=np.float32)
+        return _core.elements(v, offsets, corners, reflectance, emission, element_size=element_size)
+
+    def test_unit_cube_at_10_cm_and_3_cm(self):
+        d = 0.5 * math.sqrt(3.0)
+        for element_size, per_side, expected in ((0.1, 10, 50), (0.03, 34, 168)):
+            layout = self.cube(element_size)
+            self.assertEqual(layout["elements"], 6 * per_side ** 2)
+            exact = 2 * d * math.sqrt(8.0 / (1.0 / per_side) ** 2)
+            self.assertEqual(expected, 2 * math.ceil(exact / 2))
+            self.assertEqual(_core.recommended_resolution(layout["element_area"], layout["element_vertices"]),
+                             expected)
+            # N grows as sqrt(cells), never below 32.
+            self.assertEqual(_core.recommended_resolution(layout["element_area"], layout["element_vertices"],
+                                                          cells=2.0), max(32, 2 * math.ceil(exact / 4)))
+
+    def test_tenth_percentile_clamps_and_errors(self):
+        layout = self.cube(0.1)
+        area, vertices = layout["element_area"], layout["element_vertices"]
+        # Fewer than a tenth of tiny elements do not set the resolution; more do, up to the cap.
+        few, many = area.copy(), area.copy()
+        few[:len(area) // 10] = 1e-9
+        many[:len(area) // 10 + 1] = 1e-9
+        self.assertEqual(_core.recommended_resolution(few, vertices), 50)
+        self.assertEqual(_core.recommended_resolution(many, vertices), 1024)
+        self.assertEqual(_core.recommended_resolution(np.full(10, 100.0, dtype=np.float32), vertices), 32)
+        self.assertEqual(_core.recommended_resolution(np.zeros(0, dtype=np.float32), vertices), 32)
+        with self.assertRaisesRegex(ValueError, "element_vertices"):
+            _core.recommended_resolution(area, vertices.ravel())
+        with self.assertRaisesRegex(ValueError, "element_area"):
+            _core.recommended_resolution(area.reshape(-1, 1), vertices)
+        with self.assertRaisesRegex(ValueError, "cells"):
+            _core.recommended_resolution(area, vertices, cells=0.0)
+
+
 if __name__ == "__main__":
     unittest.main()
