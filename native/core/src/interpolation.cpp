@@ -19,6 +19,7 @@
 /// elements around S's corners join the samples; an element alone keeps its own radiance.
 /// Values are clamped at zero per channel. Elements of one smooth surface get equal sets, so their
 /// shared corners get one value and the colours join without seams.
+///  3. a vertex inside a compatible neighbour's edge (T-vertex) takes that edge's linear colour.
 #include "radiosity/interpolation.h"
 
 #include "weld.h"
@@ -30,6 +31,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <unordered_map>
+#include <utility>
 
 namespace radiosity {
 namespace {
@@ -38,15 +41,18 @@ namespace {
 class Slots {
 public:
     Slots(const Elements& elements, const int32_t* material, float hard_edge_angle)
-        : elements_(elements), material_(material), cos_hard_(std::cos(hard_edge_angle) - 1e-6f) {
+        : elements_(elements), material_(material), cos_hard_(std::cos(hard_edge_angle) - 1e-6f),
+          tolerance_(detail::weld_tolerance(elements.vertices)) {
         std::size_t welds = 0;
-        weld_ = detail::weld_points(elements.vertices, detail::weld_tolerance(elements.vertices), welds);
+        weld_ = detail::weld_points(elements.vertices, tolerance_, welds);
         // Slots incident to each weld, as compressed rows.
-        std::vector<int32_t> start(welds + 1, 0);
+        std::vector<int32_t>& start = incident_start_;
+        start.assign(welds + 1, 0);
         for (std::size_t e = 0; e < size(); ++e)
             for (int k = 0; k < corner_count(e); ++k) ++start[weld(e, k) + 1];
         for (std::size_t w = 0; w < welds; ++w) start[w + 1] += start[w];
-        std::vector<int32_t> incident(start[welds]);
+        std::vector<int32_t>& incident = incident_;
+        incident.resize(start[welds]);
         std::vector<int32_t> fill(start.begin(), start.end() - 1);
         for (std::size_t e = 0; e < size(); ++e)
             for (int k = 0; k < corner_count(e); ++k) incident[fill[weld(e, k)]++] = slot(e, k);
@@ -76,6 +82,12 @@ public:
     static std::size_t element_of(int32_t s) { return static_cast<std::size_t>(s / 4); }
     static int corner_of(int32_t s) { return s % 4; }
     int32_t weld(std::size_t e, int k) const { return weld_[elements_.corners[e][k]]; }
+    float tolerance() const { return tolerance_; }
+    /// Every slot on weld w.
+    const int32_t* incident_begin(int32_t w) const { return incident_.data() + incident_start_[w]; }
+    const int32_t* incident_end(int32_t w) const { return incident_.data() + incident_start_[w + 1]; }
+    /// Whether the edge from corner k to k + 1 lies on an intersection line.
+    bool cut_edge(std::size_t e, int k) const { return !elements_.cut_edges.empty() && ((elements_.cut_edges[e] >> k) & 1u); }
     bool border(int32_t s) const { return border_[s]; }
 
     /// The slots of S: the compatible elements at this slot's vertex, with their corner there.
@@ -94,6 +106,11 @@ public:
         for (const int32_t a : ends)
             if (std::count(ends.begin(), ends.end(), a) == 1) return true;
         return false;
+    }
+
+    bool compatible(std::size_t e, std::size_t f) const {
+        if (glm::dot(elements_.normal[e], elements_.normal[f]) < cos_hard_) return false;
+        return material_ == nullptr || material_[elements_.polygon[e]] == material_[elements_.polygon[f]];
     }
 
 private:
@@ -140,15 +157,12 @@ private:
             if (reached[i]) set_.push_back(candidates[i]);
     }
 
-    bool compatible(std::size_t e, std::size_t f) const {
-        if (glm::dot(elements_.normal[e], elements_.normal[f]) < cos_hard_) return false;
-        return material_ == nullptr || material_[elements_.polygon[e]] == material_[elements_.polygon[f]];
-    }
-
     const Elements& elements_;
     const int32_t* material_;
     float cos_hard_;
+    float tolerance_;  ///< weld tolerance
     std::vector<int32_t> weld_;
+    std::vector<int32_t> incident_start_, incident_;
     std::vector<int32_t> set_start_, set_;
     std::vector<bool> border_;
     std::vector<bool> cut_weld_;  ///< welds at the end of a cut edge
@@ -216,7 +230,9 @@ bool fit_plane(const Samples& samples, const Vec3& at, const Vec3& normal, Rgb& 
     const double trace = a + c, det = a * c - b * b;
     Rgb grad_x(0.0), grad_y(0.0);
     bool determined = true;
-    if (det > 1e-10 * trace * trace) {
+    // Samples spread across their main line by less than 3% of its length (a strip one element
+    // wide, tapering: a sliver's rows) do not tell the gradient across it: taken as collinear.
+    if (det > 1e-3 * trace * trace) {
         grad_x = (c * gx - b * gy) / det;
         grad_y = (a * gy - b * gx) / det;
     } else if (trace > 0.0) {  // rank one: the samples lie along u
@@ -256,6 +272,66 @@ Rgb extrapolate(const Elements& elements, const Slots& slots, int32_t s, const s
     return out;
 }
 
+/// Step 3: a vertex inside a compatible neighbour's edge (a T-vertex: a sliver cut into strips
+/// next to an uncut triangle, neighbours subdivided with different counts) takes that edge's linear
+/// colour at its place, so that both sides show one colour along the edge and no crack opens. The
+/// vertex is found by walking from one end of the open edge (used by one element) along the open
+/// edges of the other side to its far end; where the two sides' vertices interleave, nothing changes.
+void join_hanging_vertices(const Elements& elements, const Slots& slots, std::vector<Rgb>& colour) {
+    auto key = [](int32_t a, int32_t b) { return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b)); };
+    std::unordered_map<uint64_t, int> uses;
+    for (std::size_t e = 0; e < slots.size(); ++e)
+        for (int k = 0; k < slots.corner_count(e); ++k) ++uses[key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))];
+    auto open = [&](std::size_t e, int k) {
+        return !slots.cut_edge(e, k) && uses.at(key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))) == 1;
+    };
+    const double tolerance = slots.tolerance();
+    std::vector<std::pair<int32_t, double>> chain;  // hanging welds and their place along the edge
+    for (std::size_t e = 0; e < slots.size(); ++e) {
+        const int m = slots.corner_count(e);
+        for (int k = 0; k < m; ++k) {
+            if (!open(e, k)) continue;
+            const int32_t end = slots.weld(e, (k + 1) % m);
+            const glm::dvec3 from(elements.vertices[elements.corners[e][k]]);
+            const glm::dvec3 along = glm::dvec3(elements.vertices[elements.corners[e][(k + 1) % m]]) - from;
+            const double length2 = glm::dot(along, along);
+            chain.clear();
+            int32_t at = slots.weld(e, k);
+            double t_at = 0.0;
+            bool reached = false;
+            while (!reached) {
+                // The next vertex along the edge over the other side's open edges at `at`.
+                int32_t next = -1;
+                double t_next = 2.0;
+                for (const int32_t* s = slots.incident_begin(at); s != slots.incident_end(at); ++s) {
+                    const std::size_t f = Slots::element_of(*s);
+                    if (f == e || !slots.compatible(e, f)) continue;
+                    const int mf = slots.corner_count(f), kf = Slots::corner_of(*s);
+                    for (const int j : {kf, (kf + mf - 1) % mf}) {  // f's two edges at `at`
+                        if (!open(f, j)) continue;
+                        const int far = j == kf ? (kf + 1) % mf : j;
+                        const glm::dvec3 d = glm::dvec3(elements.vertices[elements.corners[f][far]]) - from;
+                        const double t = glm::dot(d, along) / length2;
+                        if (glm::length(d - t * along) > tolerance || !(t > t_at) || t >= t_next) continue;
+                        next = slots.weld(f, far);
+                        t_next = t;
+                    }
+                }
+                if (next < 0 || (next != end && t_next >= 1.0)) break;
+                reached = next == end;
+                if (!reached) chain.emplace_back(next, t_next);
+                at = next;
+                t_at = t_next;
+            }
+            if (!reached) continue;
+            const Rgb &c0 = colour[Slots::slot(e, k)], &c1 = colour[Slots::slot(e, (k + 1) % m)];
+            for (const auto& [w, t] : chain)
+                for (const int32_t* s = slots.incident_begin(w); s != slots.incident_end(w); ++s)
+                    if (slots.compatible(e, Slots::element_of(*s))) colour[*s] = (1.0 - t) * c0 + t * c1;
+        }
+    }
+}
+
 }  // namespace
 
 CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
@@ -277,6 +353,7 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
     CornerColors colors;
     colors.element_corner.resize(4 * n);
     for (std::size_t s = 0; s < 4 * n; ++s) colors.element_corner[s] = glm::max(value[s], Rgb(0.0));
+    join_hanging_vertices(elements, slots, colors.element_corner);
 
     // Input corners: any slot on the element vertex holding the polygon's corner (all elements of
     // one polygon share its compatible set there, hence its value).

@@ -55,6 +55,25 @@ std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const D
     return triangles;
 }
 
+SliverSplit split_sliver(const DVec3& p0, const DVec3& p1, const DVec3& p2, float max_aspect) {
+    SliverSplit split;
+    if (!(max_aspect >= 1.0f)) return split;
+    const DVec3 p[3] = {p0, p1, p2};
+    int k = 0;  // longest edge p[k] -> p[k + 1]
+    for (int i = 1; i < 3; ++i)
+        if (glm::length(p[(i + 1) % 3] - p[i]) > glm::length(p[(k + 1) % 3] - p[k])) k = i;
+    const DVec3 &a = p[k], &b = p[(k + 1) % 3], &r = p[(k + 2) % 3];
+    const double length = glm::length(b - a), along = glm::dot(r - a, b - a) / length;
+    const DVec3 foot = a + (b - a) * (along / length);
+    const double height = glm::length(r - foot);
+    if (!(length > max_aspect * height)) return split;
+    split.sliver = true;
+    if (along <= height) split.apex = (k + 1) % 3;            // short edge r-a: apex b
+    else if (length - along <= height) split.apex = k;        // short edge b-r: apex a
+    else split.at_foot = true, split.longest = k, split.foot = foot;
+    return split;
+}
+
 bool clip_segment(const std::vector<DVec3>& part, const DVec3& normal, double tolerance, DVec3& a, DVec3& b) {
     double t0 = 0.0, t1 = 1.0;
     const DVec3 d = b - a;

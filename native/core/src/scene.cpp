@@ -96,6 +96,29 @@ public:
             }
     }
 
+    /// A strip of nu rows from corner `apex` to the edge (b, c), rows parallel to b-c, each cut into
+    /// nv: a fan of triangles at the apex, trapezoids beyond (the elements of a sliver triangle).
+    void strip(int apex, int b, int c, int nu, int nv) {
+        const auto ab = edge(apex, b, nu), ac = edge(apex, c, nu), bc = edge(b, c, nv);
+        std::vector<int32_t> row(nv + 1), previous;
+        for (int i = 1; i <= nu; ++i) {
+            for (int j = 0; j <= nv; ++j) {
+                if (j == 0) row[j] = ab[i];
+                else if (j == nv) row[j] = ac[i];
+                else if (i == nu) row[j] = bc[j];
+                else {
+                    const double s = double(j) / nv;
+                    row[j] = add_vertex((1 - s) * DVec3(out_.vertices[ab[i]]) + s * DVec3(out_.vertices[ac[i]]));
+                }
+            }
+            for (int j = 0; j < nv; ++j) {
+                if (i == 1) add_element({corner_[apex], row[j], row[j + 1], -1});
+                else add_element({previous[j], row[j], row[j + 1], previous[j + 1]});
+            }
+            previous = row;
+        }
+    }
+
     /// Bilinear grid of nu x nv quads over the convex quad (a, b, c, d).
     void quad(int a, int b, int c, int d, int nu, int nv) {
         std::vector<int32_t> grid((nu + 1) * (nv + 1));
@@ -209,7 +232,11 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
                                const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits) {
     const int count = static_cast<int>(p.size());
-    auto length = [&](int i, int j) { return glm::length(p[j] - p[i]); };
+    const detail::SliverSplit sliver =
+        count == 3 ? detail::split_sliver(p[0], p[1], p[2], limits.max_aspect) : detail::SliverSplit{};
+    std::vector<DVec3> points = p;  // a cap sliver's altitude foot joins as point 3
+    if (sliver.at_foot) points.push_back(sliver.foot);
+    auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
     // Counts first, checked against the cap in double, before any element is made.
     auto check_cap = [&](double elements) {
         if (double(out.size()) + elements > double(limits.max_elements)) {
@@ -221,8 +248,28 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             fail(f, what);
         }
     };
-    PolygonBuilder build(out, p, static_cast<int32_t>(f), rho, emitted);
-    if (count == 3) {
+    PolygonBuilder build(out, points, static_cast<int32_t>(f), rho, emitted);
+    // A strip from `apex` to the edge (b, c): cut along until no row is longer than max_aspect
+    // times the far edge's pieces (as limit_aspect cuts quads); nv across, as that edge asks.
+    auto strip_rows = [&](int apex, int b, int c, double nv) {
+        double nu = std::max(segments(length(apex, b), max_edge), segments(length(apex, c), max_edge));
+        limit_aspect(std::max(length(apex, b), length(apex, c)), length(b, c), limits.max_aspect, nu, nv);
+        return nu;
+    };
+    if (sliver.at_foot) {
+        // Two right triangles (a, foot, r) and (foot, b, r) share the altitude foot-r, cut nv times.
+        const int a = sliver.longest, b = (a + 1) % 3, r = (a + 2) % 3, foot = 3;
+        const double nv = segments(length(r, foot), max_edge);
+        const double nu_a = strip_rows(a, foot, r, nv), nu_b = strip_rows(b, r, foot, nv);
+        check_cap((nu_a + nu_b) * nv);
+        build.strip(a, foot, r, static_cast<int>(nu_a), static_cast<int>(nv));
+        build.strip(b, r, foot, static_cast<int>(nu_b), static_cast<int>(nv));
+    } else if (sliver.sliver) {
+        const int apex = sliver.apex, b = (apex + 1) % 3, c = (apex + 2) % 3;
+        const double nv = segments(length(b, c), max_edge), nu = strip_rows(apex, b, c, nv);
+        check_cap(nu * nv);
+        build.strip(apex, b, c, static_cast<int>(nu), static_cast<int>(nv));
+    } else if (count == 3) {
         // Regular subdivision needs one count for all three edges, so a short edge may be cut
         // finer than its own length asks for (a T-vertex against a neighbour on that edge).
         const double n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),

@@ -66,9 +66,10 @@ struct ElementLimits {
     /// before any element is made (a 1e6 m floor at 1 cm would be 1e16 elements). 2^21 elements
     /// take about 250 MB here, and a bake of that many takes hours; real scenes need far fewer.
     std::size_t max_elements = std::size_t(1) << 21;
-    /// Convex quads: cut the long direction further until no element is longer than
-    /// `max_aspect` times its width (thin slivers; docs/stability.md). 0 = off. Triangles keep
-    /// their shape under regular subdivision, so this does not reach them.
+    /// Thin slivers (docs/stability.md), 0 = off. Convex quads: cut the long direction further
+    /// until no element is longer than `max_aspect` times its width. Triangles longer than
+    /// `max_aspect` times their height: cut into strips across their length, from the corner
+    /// opposite a short edge, or from both ends of the longest edge to the altitude's foot.
     float max_aspect = 0.0f;
     /// Cut polygons along the lines where other polygons pass through them, before subdividing, so
     /// that no element straddles an intersection and leaks light across it (docs/stability.md).
