@@ -186,6 +186,18 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
     return box
 
 
+def small_lamp_over_floor(side, height=1.5, rho=0.5, radiance=1000.0):
+    """A 2 x 2 m floor (8 x 8 faces, normal +Z, reflectance `rho`) under a small emitting square of
+    `side` metres at `height`, facing down, centred. The lamp is black and the floor does not see
+    itself, so the floor's radiance is direct light: rho x radiance x the point-to-square factor.
+    Returns the object and the lamp's four corners."""
+    x0 = 1.0 - side / 2
+    lamp = grid((x0, x0, height), (0, side, 0), (side, 0, 0), 1, 1)   # (0, s, 0) x (s, 0, 0): -Z
+    obj = mesh_object("Floor and Lamp", [grid((0, 0, 0), (2, 0, 0), (0, 2, 0), 8, 8) + (0,), lamp + (1,)],
+                      [diffuse("Grey", (rho, rho, rho)), emission("Lamp", (1.0, 1.0, 1.0), radiance)])
+    return obj, lamp[0][lamp[1][0]]
+
+
 def _block(xy0, xy1, height, cell):
     """The five visible faces of an axis-aligned block standing on the floor (outward normals)."""
     (x0, y0), (x1, y1) = xy0, xy1

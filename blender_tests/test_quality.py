@@ -23,8 +23,8 @@ auto_settings = sys.modules[harness.MODULE + ".auto_settings"]
 ui = sys.modules[harness.MODULE + ".ui"]
 
 # The presets as the user guide documents them: (element size as a fraction of the scene's size,
-# hemi-cube resolution, tolerance).
-DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 64, 1e-3), "MEDIUM": (1 / 32, 128, 1e-4), "HIGH": (1 / 48, 192, 1e-5)}
+# hemi-cube cells the smallest elements must cover, tolerance).
+DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 32, 6, 1e-4), "HIGH": (1 / 48, 8, 1e-5)}
 
 
 def surface_area(obj):
@@ -38,6 +38,12 @@ def job_for(scene):
     return pipeline.BakeJob(scene, depsgraph, view_layer)
 
 
+def even_resolution(distance, area, cells):
+    """docs/stability.md: the resolution at which `area` seen head-on from `distance` covers `cells`
+    cells, N = 2 d sqrt(cells / A), rounded up to even."""
+    return 2 * math.ceil(distance * math.sqrt(cells / area))
+
+
 def test_presets_map_to_settings():
     scenes.clear_scene()
     box = scenes.cornell_box("MESH")
@@ -45,13 +51,21 @@ def test_presets_map_to_settings():
     size = math.sqrt(surface_area(box) / 6)
     settings = bpy.context.scene.radiosity
     assert settings.quality == "MEDIUM", "an artist starts from Medium"
-    for quality, (fraction, resolution, tolerance) in DOCUMENTED_PRESETS.items():
+    for quality, (fraction, cells, tolerance) in DOCUMENTED_PRESETS.items():
         settings.quality = quality
         choice = job_for(bpy.context.scene).choice
-        print("%s: element size %.5f (scene size %.4f), resolution %d, tolerance %g, %d elements, %s"
-              % (quality, choice.element_size, size, choice.resolution, choice.tolerance, choice.elements, choice.method))
+        print("%s: element size %.5f (scene size %.4f), resolution %d (%s), tolerance %g, %d elements, %s"
+              % (quality, choice.element_size, size, choice.resolution, choice.resolution_reason, choice.tolerance,
+                 choice.elements, choice.method))
         assert abs(choice.element_size - fraction * size) < 1e-6 * size, choice
-        assert (choice.resolution, choice.tolerance, choice.method) == (resolution, tolerance, "gauss_seidel"), choice
+        # The walls' faces (1/8 m) split into whole elements, the smallest tenth of the elements among
+        # them; seen from half the 1 m cube's diagonal.
+        face = 1 / scenes.CORNELL_CELLS
+        wall_element = face / math.ceil(face / choice.element_size)
+        resolution = even_resolution(0.5 * math.sqrt(3), wall_element ** 2, cells)
+        assert (choice.resolution, choice.hemicube_rotations, choice.tolerance, choice.method) == (
+            resolution, 1, tolerance, "gauss_seidel"), (choice, resolution)
+        assert "smallest tenth of the elements cover %d cells" % cells in choice.resolution_reason, choice
         # About 6 / fraction^2 elements whatever the shape (faces split into whole elements: more).
         assert 6 / fraction ** 2 <= choice.elements <= 1.3 * 6 / fraction ** 2, choice.elements
 
@@ -141,7 +155,8 @@ def test_panel_shows_quality_and_summary():
     settings.quality = "MEDIUM"
     drawn = drawn_panel()
     assert "quality" in drawn and "memory_budget" in drawn and "element_size" not in drawn, drawn
-    assert "Elements 1/32 of the scene, resolution 128, tolerance 0.0001, refinement 0.02" in drawn, drawn
+    assert "Elements 1/32 of the scene, resolution from the scene (6 cells), tolerance 0.0001, refinement 0.02" \
+        in drawn, drawn
     settings.quality = "CUSTOM"
     drawn = drawn_panel()
     for name in ("method", "element_size", "hemicube_resolution", "tolerance", "max_iterations"):
@@ -231,6 +246,92 @@ def test_over_relaxation_near_rho_one():
     assert np.abs(sor_colors - plain_colors).mean() / exact <= sum(bounds)
 
 
+def point_to_polygon(points, normal, polygon):
+    """Lambert's contour integral: the unoccluded form factor from a differential area at each of
+    `points` (unit normal `normal`) to the convex polygon with corners `polygon` in order."""
+    r = polygon[None, :, :] - points[:, None, :]
+    r_next = np.roll(r, -1, axis=1)
+    cross = np.cross(r, r_next)
+    angle = np.arctan2(np.linalg.norm(cross, axis=2), (r * r_next).sum(axis=2))
+    unit = cross / np.linalg.norm(cross, axis=2, keepdims=True)
+    return np.abs((angle * (unit @ normal)).sum(axis=1)) / (2 * math.pi)
+
+
+def floor_error(obj, lamp, rho, radiance):
+    """Relative RMS of the floor's baked corners against their direct light from the lamp."""
+    mesh = obj.data
+    positions = np.empty(len(mesh.vertices) * 3)
+    mesh.vertices.foreach_get("co", positions)
+    loops = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", loops)
+    corners = positions.reshape(-1, 3)[loops]
+    on_floor = corners[:, 2] == 0.0
+    exact = rho * radiance * point_to_polygon(corners[on_floor], np.array([0.0, 0.0, 1.0]), lamp)
+    baked = harness.corner_colors(mesh, "Radiosity")[on_floor]
+    return math.sqrt(np.mean((baked - exact[:, None]) ** 2)) / math.sqrt(np.mean(exact ** 2))
+
+
+LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE = 1.5, 0.5, 1000.0
+# Half the diagonal of the 2 x 2 x 1.5 m scene: where recommended_resolution sees the lamp from.
+LAMP_SCENE_HALF_DIAGONAL = 0.5 * math.sqrt(2 ** 2 + 2 ** 2 + LAMP_HEIGHT ** 2)
+
+
+def test_small_distant_lamp_sets_the_resolution():
+    # A 2 cm lamp 1.5 m over a floor. Draft's elements (5 cm) are all larger, so the lamp alone
+    # sets the resolution: it must cover Draft's 4 cells. The old fixed Draft resolution (64) gave
+    # it 0.2 cells: each floor element caught the lamp in one cell or missed it.
+    side = 0.02
+    scenes.clear_scene()
+    obj, lamp = scenes.small_lamp_over_floor(side, LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE)
+    settings = bpy.context.scene.radiosity
+    settings.quality = "DRAFT"
+    resolution = even_resolution(LAMP_SCENE_HALF_DIAGONAL, side ** 2, 4)
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    chosen = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    assert ("Hemi-cube resolution %d: the smallest tenth of the emitting elements cover 4 cells" % resolution
+            in settings.last_accuracy), settings.last_accuracy
+    element_size = job_for(bpy.context.scene).choice.element_size
+
+    # The same elements at the old fixed resolution, through the panel's Custom settings.
+    settings.quality = "CUSTOM"
+    settings.element_size, settings.hemicube_resolution, settings.tolerance = element_size, 64, 1e-3
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    fixed = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    print("2 cm lamp at 1.5 m, Draft: resolution %d, %.1f%% RMS against the direct light; resolution 64: %.1f%%"
+          % (resolution, 100 * chosen, 100 * fixed))
+    assert chosen < 0.2 and fixed > 1.0, (chosen, fixed)
+
+    # The batch command chooses and reports the same.
+    path = os.path.join(args.work, "small_lamp.blend")
+    settings.quality = "MEDIUM"
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
+                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path, "--quality", "DRAFT"],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert "Hemi-cube resolution %d: the smallest tenth of the emitting elements" % resolution in run.stdout, run.stdout
+
+
+def test_tiny_lamp_past_the_cap_adds_rotations():
+    # A 5 mm lamp would need resolution 1281 for Draft's 4 cells; capped at 1024, hemi-cubes turned
+    # about the normal make up for it: (1281 / 1024)^2.8 = 1.9, so 2 (docs/accuracy.md).
+    side = 0.005
+    scenes.clear_scene()
+    obj, lamp = scenes.small_lamp_over_floor(side, LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE)
+    bpy.context.scene.radiosity.quality = "DRAFT"
+    needed = 2 * LAMP_SCENE_HALF_DIAGONAL * math.sqrt(4 / side ** 2)
+    rotations = math.ceil((needed / 1024) ** 2.8)
+    choice = job_for(bpy.context.scene).choice
+    assert (choice.resolution, choice.hemicube_rotations, rotations) == (1024, 2, 2), (choice, needed)
+    summary = addon.bake(bpy.context.scene)
+    error = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    print("5 mm lamp at 1.5 m, Draft: resolution %d x %d rotations (%s), %.1f%% RMS against the direct light, "
+          "%.0f s" % (summary["resolution"], summary["hemicube_rotations"], summary["resolution_reason"], 100 * error,
+                      sum(summary["seconds"].values())))
+    assert summary["hemicube_rotations"] == 2 and "capped at 1024" in summary["resolution_reason"], summary
+    assert error < 0.15, error
+
+
 def test_thin_quads_are_cut():
     # A strip 1 m long and 2 mm wide under an emitting square: Draft's elements (1/16 of the
     # scene's size, 2.6 cm) would be 13 times longer than wide there; cut to at most 4.
@@ -253,4 +354,5 @@ def test_thin_quads_are_cut():
 
 
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
-            test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one, test_thin_quads_are_cut)
+            test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one, test_small_distant_lamp_sets_the_resolution,
+            test_tiny_lamp_past_the_cap_adds_rotations, test_thin_quads_are_cut)

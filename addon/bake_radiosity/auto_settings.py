@@ -1,6 +1,7 @@
 """The artist's Quality and the Automatic method as concrete bake settings: element size from the
-scene's size, resolution and tolerance from the preset, method from the core's own memory model
-and the memory budget. No bpy: numbers from the exported arrays only."""
+scene's size, resolution from the elements the scene is made of (the core's
+recommended_resolution), tolerance from the preset, method from the core's own memory model and
+the memory budget. No bpy: numbers from the exported arrays only."""
 
 import math
 from dataclasses import dataclass
@@ -15,20 +16,35 @@ MEBIBYTE = 1 << 20
 # recommended omega (over_relaxation 0 = automatic), which pays off where reflectance is near 1.
 MAX_ELEMENT_ASPECT = 4.0
 AUTOMATIC_OVER_RELAXATION = 0.0
+# The near-field correction stays off: on the Cornell box it moved no preset measurably closer to
+# Cycles' converged bake (5.75/2.78/2.25% off, on: 5.73/2.78/2.24%, docs/charts/bake_vs_cycles_ratios.txt),
+# and it changes the factors every Cycles comparison was measured with.
+NEAR_FIELD = False
+# The core's largest resolution. Beyond it a preset averages hemi-cubes turned about the normal:
+# a factor's aliasing error goes as cells^-0.7 and as rotations^-0.5 (docs/stability.md), so
+# needing N > 1024 takes (N / 1024)^2.8 rotations for the same error, at most MAX_ROTATIONS
+# (each costs a whole 1024 hemi-cube per element).
+MAX_RESOLUTION = 1024
+ROTATION_EXPONENT = 2.8
+MAX_ROTATIONS = 4
 
 
 @dataclass(frozen=True)
 class Preset:
     divisions: int      # element size = scene size / divisions (about 6 divisions^2 elements)
-    resolution: int     # 4 x divisions: an element one scene size away covers about 2 cells across
+    cells: float        # hemi-cube cells the smallest elements and emitters must cover (accuracy target)
     tolerance: float
     refine_tolerance: float  # hierarchical: error per link, share of the mean reflected radiance
 
 
+# Cells: the smallest tenth of the elements (and of the emitting elements), seen head-on from half
+# the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
+# RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236 (before: fixed 64,
+# 128, 192); a 2 cm lamp 1.5 m over a floor makes Draft 322 (blender_tests/test_quality.py).
 PRESETS = {
-    "DRAFT": Preset(16, 64, 1e-3, 0.05),
-    "MEDIUM": Preset(32, 128, 1e-4, 0.02),
-    "HIGH": Preset(48, 192, 1e-5, 0.01),
+    "DRAFT": Preset(16, 4.0, 1e-3, 0.05),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02),
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01),
 }
 
 
@@ -45,10 +61,13 @@ class Choice:
     matrix_bytes_bound: int     # the core's worst case for the stored matrix
     budget_bytes: int
     max_element_aspect: float   # 0 = slivers kept (the zonal bake does not cut them)
+    hemicube_rotations: int     # hemi-cubes per element, turned about the normal (1 = one)
+    resolution_reason: str      # why this resolution, in words for the summary
 
     def stability_keywords(self):
         """The stability settings _core.bake takes for this choice."""
-        keywords = {"max_element_aspect": self.max_element_aspect}
+        keywords = {"max_element_aspect": self.max_element_aspect, "hemicube_rotations": self.hemicube_rotations,
+                    "near_field": NEAR_FIELD}
         if self.method == "gauss_seidel":
             keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
         return keywords
@@ -62,6 +81,39 @@ def scene_size(exported):
     return math.sqrt(float(areas.sum()) / 6.0)
 
 
+@dataclass(frozen=True)
+class Resolution:
+    resolution: int
+    rotations: int
+    reason: str
+
+
+def preset_resolution(layout, emitting, preset, zonal=False):
+    """The Resolution at which the smallest tenth of the elements, and of the emitting elements (a
+    small lamp aliases most visibly: blotchy light), cover `preset.cells` cells seen from half the
+    scene's diagonal (`_core.recommended_resolution`). Capped at 1024 it adds rotations, except in
+    the zonal bake, which takes none."""
+    core = native.core()
+    area, vertices = layout["element_area"], layout["element_vertices"]
+    groups = [("elements", area)] + ([("emitting elements", area[emitting])] if emitting.any() else [])
+    wanted = [(core.recommended_resolution(a, vertices, preset.cells), name, a) for name, a in groups]
+    resolution, name, driving = max(wanted, key=lambda w: w[0])
+    if resolution < MAX_RESOLUTION:
+        return Resolution(resolution, 1, "the smallest tenth of the %s cover %g cells from half the scene's "
+                                         "diagonal" % (name, preset.cells))
+    # N grows as sqrt(cells): a quarter of the cells asks for N / 2. Halve until inside the core's range.
+    scale = 2
+    while core.recommended_resolution(driving, vertices, preset.cells / scale ** 2) >= MAX_RESOLUTION and scale < 64:
+        scale *= 2
+    needed = scale * core.recommended_resolution(driving, vertices, preset.cells / scale ** 2)
+    rotations = 1 if zonal else min(MAX_ROTATIONS, math.ceil((needed / MAX_RESOLUTION) ** ROTATION_EXPONENT))
+    reason = "the smallest tenth of the %s would need %d to cover %g cells from half the scene's diagonal, " \
+             "capped at %d" % (name, needed, preset.cells, MAX_RESOLUTION)
+    if rotations > 1:
+        reason += ", %d hemi-cubes turned about the normal" % rotations
+    return Resolution(MAX_RESOLUTION, rotations, reason)
+
+
 def choose(settings, exported, zonal=False):
     """The Choice for `settings` (pipeline.settings_of) on `exported`; `zonal`: a bake with media,
     whose core call takes no stability settings."""
@@ -73,9 +125,8 @@ def choose(settings, exported, zonal=False):
         tolerance = float(settings["tolerance"])
         refine_tolerance = float(settings["refine_tolerance"])
     else:
-        element_size, resolution, tolerance = size / preset.divisions, preset.resolution, preset.tolerance
+        element_size, tolerance = size / preset.divisions, preset.tolerance
         refine_tolerance = preset.refine_tolerance
-    resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
 
     max_element_aspect = 0.0 if zonal else MAX_ELEMENT_ASPECT
     core = native.core()
@@ -83,6 +134,13 @@ def choose(settings, exported, zonal=False):
                            exported.reflectance, exported.emission, exported.material, element_size=element_size,
                            max_element_aspect=max_element_aspect)
     elements = int(layout["elements"])
+    if preset is None:
+        resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
+        chosen = Resolution(resolution, 1, "set by hand (Custom)")
+    else:
+        emitting = exported.emission[layout["element_polygon"]].max(axis=1) > 0.0
+        chosen = preset_resolution(layout, emitting, preset, zonal)
+    resolution = chosen.resolution
     bound = int(core.matrix_bytes_bound(elements, resolution))
     budget = int(settings["memory_budget"]) * MEBIBYTE
     if preset is None and settings["method"] != "AUTO":
@@ -95,10 +153,13 @@ def choose(settings, exported, zonal=False):
     if zonal and method == "hierarchical":
         raise ValueError("The hierarchical method does not bake fog or smoke yet: choose Automatic or "
                          "progressive refinement for scenes with media")
+    if method == "hierarchical":  # visibility by ray tracing: no hemi-cubes
+        chosen = Resolution(resolution, 1, "not used, the hierarchical method traces rays")
     return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance,
                   refine_tolerance=refine_tolerance, method=method,
                   elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
-                  max_element_aspect=max_element_aspect)
+                  max_element_aspect=max_element_aspect, hemicube_rotations=chosen.rotations,
+                  resolution_reason=chosen.reason)
 
 
 def warnings_for(choice):

@@ -127,7 +127,8 @@ class BakeJob:
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
-            "tolerance": c.tolerance, "scene_size": c.scene_size,
+            "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,
+            "resolution_reason": c.resolution_reason,
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
             "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
             "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
@@ -175,7 +176,7 @@ def report_line(summary):
 
 
 def accuracy_line(summary):
-    """Residual; energy balance; error estimate (the panel shows one part a line)."""
+    """Residual; energy balance; error estimate; resolution and why (the panel shows one part a line)."""
     power, error = summary["energy"], summary["error_estimate"]
     lost = power["lost"] / power["emitted"] if power["emitted"] > 0.0 else 0.0
     return "; ".join((
@@ -184,6 +185,9 @@ def accuracy_line(summary):
             power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
         "Error typically %s %.1f%% (element size, measured on the Cornell box) + at most %.2g%% (solve)" % (
             error["discretisation_relation"], 100 * error["discretisation"], 100 * error["solve_bound"]),
+        "Hemi-cube resolution %d%s: %s" % (
+            summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
+            if summary["hemicube_rotations"] > 1 else "", summary["resolution_reason"]),
     ))
 
 
@@ -226,7 +230,8 @@ def progress_text(info, tolerance):
 
 def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
-    method and the settings chosen (quality, element_size, resolution, tolerance, matrix memory),
+    method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
+    resolution_reason, tolerance, matrix memory),
     energy (watts emitted, absorbed, lost), error_estimate (solve bound, measured discretisation
     error), warnings, and seconds per phase (export, form_factors, solve, writeback).
 

@@ -17,14 +17,15 @@ class RadiositySettings(bpy.types.PropertyGroup):
     quality: EnumProperty(
         name="Quality",
         description="How fine and how exact the bake is. The presets choose element size (relative to "
-                    "the scene's size), hemi-cube resolution, tolerance and method; Custom shows each",
+                    "the scene's size), hemi-cube resolution (so that the smallest elements and lamps cover "
+                    "enough cells), tolerance and method; Custom shows each",
         items=(
-            ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution 64, tolerance 1e-3, "
-             "refinement 0.05"),
-            ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution 128, tolerance 1e-4, "
-             "refinement 0.02"),
-            ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution 192, tolerance 1e-5, "
-             "refinement 0.01"),
+            ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution for 4 cells, "
+             "tolerance 1e-3, refinement 0.05"),
+            ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution for 6 cells, "
+             "tolerance 1e-4, refinement 0.02"),
+            ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution for 8 cells, "
+             "tolerance 1e-5, refinement 0.01"),
             ("CUSTOM", "Custom", "Set element size, resolution, tolerance and method yourself"),
         ),
         default="MEDIUM",
