@@ -12,12 +12,18 @@ the chart and prints the time ratios.) Scenes:
 - a furnace (closed unit box, emission 1, reflectance 0.8): the exact answer 5 is the reference
   for both.
 
+Gauss-Seidel is the over-relaxed one the add-on runs (the core's automatic omega); plain
+Gauss-Seidel (omega 1), labelled GAUSS_SEIDEL_PLAIN, is measured beside it to show the gain. The
+presets are baked as the add-on chooses them, and once more with the near-field correction on
+(column near_field), the evidence for leaving it off.
+
 Error: relative RMS over the corners (all three channels) not on the emitter. Time of the whole
 bake (add-on export to written attribute; Cycles from the operator's call to its return), as CPU
 seconds of this process (all threads: the machine this runs on is shared, and CPU time does not
 count other jobs) and as wall-clock seconds. Writes one CSV row per bake."""
 
 import argparse
+import contextlib
 import csv
 import math
 import os
@@ -36,7 +42,8 @@ CYCLES_SAMPLES = (1, 4, 16, 64, 256, 1024, 4096)
 # Two halves with different seeds: their mean is the reference, their difference its noise.
 CYCLES_REFERENCE_SAMPLES = 16384
 CORNELL_EMITTER_MATERIAL = 3
-METHODS = ("GAUSS_SEIDEL", "JACOBI", "PROGRESSIVE")
+METHODS = ("GAUSS_SEIDEL", "GAUSS_SEIDEL_PLAIN", "JACOBI", "PROGRESSIVE")
+PRESETS = ("DRAFT", "MEDIUM", "HIGH")
 CORNELL_ELEMENT_SIZES = (1 / 8, 1 / 16, 1 / 32)
 RESOLUTIONS = (64, 128, 256)
 CORNELL_REFERENCE = dict(element_size=1 / 64, hemicube_resolution=256, method="GAUSS_SEIDEL",
@@ -45,7 +52,7 @@ FURNACE_RHO, FURNACE_EMISSION = 0.8, 1.0
 FURNACE_ELEMENT_SIZES = (1 / 4, 1 / 8)
 FURNACE_RESOLUTIONS = (64, 128)
 FURNACE_TOLERANCES = (1e-1, 1e-2, 1e-3, 1e-4, 1e-5)
-FIELDS = ("scene", "renderer", "method", "quality", "element_size", "resolution", "tolerance", "samples",
+FIELDS = ("scene", "renderer", "method", "quality", "near_field", "element_size", "resolution", "tolerance", "samples",
           "elements", "cpu_seconds", "seconds", "error_converged", "error_truth")
 
 
@@ -119,9 +126,26 @@ def cycles_bake(obj, samples, seed):
     return corner_colors(obj.data, name), seconds
 
 
-def radiosity_bake(addon, obj, **settings):
-    """(corner colours, Stopwatch, summary) of a whole add-on bake."""
-    with Stopwatch() as seconds:
+@contextlib.contextmanager
+def patched(name, value):
+    """The add-on's auto_settings.<name> set to `value` inside the block."""
+    auto_settings = sys.modules["bake_radiosity.auto_settings"]
+    kept = getattr(auto_settings, name)
+    setattr(auto_settings, name, value)
+    try:
+        yield
+    finally:
+        setattr(auto_settings, name, kept)
+
+
+def radiosity_bake(addon, obj, method=None, near_field=False, **settings):
+    """(corner colours, Stopwatch, summary) of a whole add-on bake; method GAUSS_SEIDEL_PLAIN is
+    Gauss-Seidel without over-relaxation."""
+    if method is not None:
+        settings["method"] = "GAUSS_SEIDEL" if method == "GAUSS_SEIDEL_PLAIN" else method
+    auto_settings = sys.modules["bake_radiosity.auto_settings"]
+    omega = 1.0 if method == "GAUSS_SEIDEL_PLAIN" else auto_settings.AUTOMATIC_OVER_RELAXATION
+    with patched("AUTOMATIC_OVER_RELAXATION", omega), patched("NEAR_FIELD", near_field), Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", **settings)
     return corner_colors(obj.data, "Radiosity"), seconds, summary
 
@@ -162,12 +186,14 @@ def cornell_rows(addon):
                                 relative_rms(colors[keep], cycles_reference, cycles_noise), method=method,
                                 quality="CUSTOM", element_size=element_size, resolution=resolution,
                                 tolerance=1e-4, elements=summary["elements"]))
-    for quality in ("DRAFT", "MEDIUM", "HIGH"):
-        colors, seconds, summary = radiosity_bake(addon, box, quality=quality)
-        rows.append(row("cornell", "radiosity", seconds, relative_rms(colors[keep], radiosity_reference),
-                        relative_rms(colors[keep], cycles_reference, cycles_noise), method=summary["method"].upper(),
-                        quality=quality, element_size=summary["element_size"], resolution=summary["resolution"],
-                        tolerance=summary["tolerance"], elements=summary["elements"]))
+    for near_field in (False, True):
+        for quality in PRESETS:
+            colors, seconds, summary = radiosity_bake(addon, box, quality=quality, near_field=near_field)
+            rows.append(row("cornell", "radiosity", seconds, relative_rms(colors[keep], radiosity_reference),
+                            relative_rms(colors[keep], cycles_reference, cycles_noise),
+                            method=summary["method"].upper(), quality=quality, near_field=int(near_field),
+                            element_size=summary["element_size"], resolution=summary["resolution"],
+                            tolerance=summary["tolerance"], elements=summary["elements"]))
     for samples in CYCLES_SAMPLES:
         colors, seconds = cycles_bake(box, samples, seed=samples)
         error = relative_rms(colors[keep], cycles_reference, cycles_noise)

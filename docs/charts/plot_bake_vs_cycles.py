@@ -7,7 +7,10 @@ the ratio "our time / Cycles' time to reach the same error" at 5%, 2% and 1%:
 Three panels, error against time on log-log axes: the Cornell box against each renderer's own
 converged bake, the Cornell box against Cycles' converged bake (physical truth), and the furnace
 against its exact answer. One line per method and hemi-cube resolution (points: element sizes,
-or tolerances in the furnace), Cycles' sample ladder, the quality presets as labelled stars."""
+or tolerances in the furnace), Cycles' sample ladder, the quality presets as labelled stars.
+Gauss-Seidel is the over-relaxed solve the add-on runs; plain Gauss-Seidel (omega 1) is drawn
+beside it. The presets baked with the near-field correction (near_field 1) are listed in the ratios
+file, not drawn (they fall on the presets' stars)."""
 
 import csv
 import math
@@ -19,13 +22,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-METHOD_COLOURS = {"GAUSS_SEIDEL": "tab:blue", "JACOBI": "tab:orange", "PROGRESSIVE": "tab:green"}
+METHOD_COLOURS = {"GAUSS_SEIDEL": "tab:blue", "GAUSS_SEIDEL_PLAIN": "tab:purple", "JACOBI": "tab:orange",
+                  "PROGRESSIVE": "tab:green"}
+METHOD_LABELS = {"GAUSS_SEIDEL": "Gauss-Seidel (over-relaxed)", "GAUSS_SEIDEL_PLAIN": "plain Gauss-Seidel",
+                 "JACOBI": "Jacobi", "PROGRESSIVE": "progressive"}
 RESOLUTION_STYLES = {64: ":", 128: "--", 256: "-"}
 PANELS = (("cornell", "error_converged", "Cornell box: each against its own converged bake"),
           ("cornell", "error_truth", "Cornell box: against Cycles' converged bake"),
           ("furnace", "error_truth", "Furnace (rho 0.8): against the exact answer"))
 LEVELS = (0.05, 0.02, 0.01)
-METHODS = ("GAUSS_SEIDEL", "JACOBI", "PROGRESSIVE")
+METHODS = ("GAUSS_SEIDEL", "GAUSS_SEIDEL_PLAIN", "JACOBI", "PROGRESSIVE")
+PRESETS = ("DRAFT", "MEDIUM", "HIGH")
 # CPU seconds of the whole bake (every thread): the machine that measures is shared, and CPU time
 # does not count the other jobs.
 CLOCK = "cpu_seconds"
@@ -34,6 +41,10 @@ CLOCK = "cpu_seconds"
 def read(path):
     with open(path, newline="") as source:
         return list(csv.DictReader(source))
+
+
+def near_field(row):
+    return row.get("near_field") == "1"
 
 
 def series_key(row, scene):
@@ -51,7 +62,7 @@ def draw(axis, rows, scene, column, title):
     for key, points in sorted(lines.items()):
         points.sort()
         method, resolution = key[0], key[1]
-        label = "%s, res %d" % (method.replace("_", "-").lower(), resolution)
+        label = "%s, res %d" % (METHOD_LABELS[method], resolution)
         if len(key) > 2:
             label += ", %.3g m" % key[2]
         axis.plot(*zip(*points), RESOLUTION_STYLES[resolution], marker="o", markersize=3,
@@ -64,7 +75,8 @@ def draw(axis, rows, scene, column, title):
     for seconds, error, samples in cycles:
         axis.annotate(str(samples), (seconds, error), textcoords="offset points", xytext=(4, 2), fontsize=7)
     for row in rows:
-        if row["scene"] == scene and row["renderer"] == "radiosity" and row["quality"] != "CUSTOM":
+        if (row["scene"] == scene and row["renderer"] == "radiosity" and row["quality"] != "CUSTOM"
+                and not near_field(row)):
             point = (float(row[CLOCK]), float(row[column]))
             axis.plot(*point, "*", color="crimson", markersize=11)
             axis.annotate(row["quality"].title(), point, textcoords="offset points", xytext=(5, -9),
@@ -110,7 +122,7 @@ def ratio_lines(rows, clock):
                   if r["scene"] == scene and r["renderer"] == "cycles"]
         for method in METHODS:
             ours = [(float(r[clock]), float(r[column])) for r in rows if r["scene"] == scene
-                    and r["renderer"] == "radiosity" and r["method"] == method]
+                    and r["renderer"] == "radiosity" and r["method"] == method and not near_field(r)]
             parts = []
             for level in LEVELS:
                 (t_ours, ours_first), (t_cycles, cycles_first) = time_to_reach(ours, level), time_to_reach(cycles, level)
@@ -121,7 +133,19 @@ def ratio_lines(rows, clock):
                 note = " (Cycles below it at its fastest bake: ratio is a lower bound)" if cycles_first else ""
                 note += " (radiosity below it at its fastest bake: ratio is an upper bound)" if ours_first else ""
                 parts.append("%g%%: %.3g s / %.3g s = %.2g%s" % (100 * level, t_ours, t_cycles, t_ours / t_cycles, note))
-            lines.append("  %-13s %s" % (method.lower(), "; ".join(parts)))
+            lines.append("  %-18s %s" % (method.lower(), "; ".join(parts)))
+    return lines
+
+
+def preset_lines(rows):
+    """The presets as the add-on chooses them, without and with the near-field correction."""
+    lines = ["cornell presets (error against the converged radiosity bake / against Cycles' converged bake):"]
+    for quality in PRESETS:
+        for r in rows:
+            if r["scene"] == "cornell" and r["quality"] == quality:
+                lines.append("  %-6s near field %-3s %5d elements, resolution %3d: %6.2f CPU s, %.2f%% / %.2f%%" % (
+                    quality.lower(), "on" if near_field(r) else "off", int(r["elements"]), int(r["resolution"]),
+                    float(r["cpu_seconds"]), 100 * float(r["error_converged"]), 100 * float(r["error_truth"])))
     return lines
 
 
@@ -139,6 +163,7 @@ def main(csv_path, png_path, ratios_path):
     lines += ratio_lines(rows, "cpu_seconds")
     lines += ["", "The same in wall-clock seconds (shared machine: other jobs ran too):"]
     lines += ratio_lines(rows, "seconds")
+    lines += [""] + preset_lines(rows)
     with open(ratios_path, "w") as out:
         out.write("\n".join(lines) + "\n")
     print("\n".join(lines))
