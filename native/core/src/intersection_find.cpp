@@ -53,6 +53,30 @@ bool straddles(const std::vector<DVec3>& p, const Plane& plane, double tolerance
     return above && below;
 }
 
+/// Whether the corners touch the plane along an edge: two or more within `tolerance` of it, the
+/// rest beyond it on one side only (a box's side face standing on a floor).
+bool touches(const std::vector<DVec3>& p, const Plane& plane, double tolerance) {
+    int on = 0;
+    bool above = false, below = false;
+    for (const DVec3& q : p) {
+        const double d = glm::dot(plane.normal, q) - plane.offset;
+        on += std::abs(d) <= tolerance;
+        above = above || d > tolerance;
+        below = below || d < -tolerance;
+    }
+    return on >= 2 && above != below;
+}
+
+/// Whether x lies within `tolerance` of the polygon's outline.
+bool on_outline(const std::vector<DVec3>& p, const DVec3& x, double tolerance) {
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        const DVec3 &a = p[k], d = p[(k + 1) % p.size()] - a;
+        const double t = std::clamp(glm::dot(x - a, d) / glm::dot(d, d), 0.0, 1.0);
+        if (glm::length(x - a - t * d) <= tolerance) return true;
+    }
+    return false;
+}
+
 /// The interval where a convex part crosses the plane, as two points on it; false if shorter than `tolerance`.
 bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& along, double tolerance, DVec3& a, DVec3& b) {
     double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
@@ -83,36 +107,51 @@ bool one_side(const Box& box, const Plane& plane, double tolerance) {
 /// Each polygon's plane; then, per pair, the segments. Holds one thread's scratch.
 class Finder {
 public:
-    Finder(const SceneInput& in, const std::vector<Plane>& planes) : in_(in), plane_(planes) {}
+    /// contact_tolerance < 0: no contact lines.
+    Finder(const SceneInput& in, const std::vector<Plane>& planes, double contact_tolerance)
+        : in_(in), plane_(planes), contact_tolerance_(contact_tolerance) {}
 
-    /// Appends the segments where polygon a passes through polygon b, and b through a.
+    /// Appends the segments where polygon a passes through or stands on polygon b, and b on or through a.
     void cut_pair(std::size_t a, std::size_t b, const Box& a_box, const Box& b_box, std::vector<CutSegment>& out) {
         const Plane &pa = plane_[a], &pb = plane_[b];
-        const double tolerance = std::max(pa.tolerance, pb.tolerance);
-        if (one_side(b_box, pa, tolerance) || one_side(a_box, pb, tolerance)) return;  // cheap: most pairs end here
+        // Contacts are measured against the scene: a box set on a floor by hand sits within round-off
+        // of it at the scene's scale, not at its own faces'.
+        const double tolerance = std::max({pa.tolerance, pb.tolerance, contact_tolerance_});
+        // Only a polygon that has corners on both sides of the other's plane can be cut; without
+        // contacts, both must have (cheap: most pairs end here).
+        const bool contacts = contact_tolerance_ >= 0.0;
+        const bool a_cuttable = !one_side(a_box, pb, tolerance), b_cuttable = !one_side(b_box, pa, tolerance);
+        if (contacts ? !a_cuttable && !b_cuttable : !a_cuttable || !b_cuttable) return;
         read_corners(in_, a, a_corners_);
-        if (!straddles(a_corners_, pb, tolerance)) return;
         read_corners(in_, b, b_corners_);
-        if (!straddles(b_corners_, pa, tolerance)) return;
+        const bool a_straddles = a_cuttable && straddles(a_corners_, pb, tolerance);
+        const bool b_straddles = b_cuttable && straddles(b_corners_, pa, tolerance);
+        // b is cut where a passes through it or stands on it (a's edge in b's plane, inside b).
+        const bool cut_b = b_straddles && (a_straddles || (contacts && touches(a_corners_, pb, tolerance)));
+        const bool cut_a = a_straddles && (b_straddles || (contacts && touches(b_corners_, pa, tolerance)));
+        if (!cut_a && !cut_b) return;
         const DVec3 common = glm::cross(pa.normal, pb.normal);  // direction of the planes' common line
         if (!(glm::length(common) > 0.0)) return;
         convex_parts(a_corners_, pa, a_parts_);
         convex_parts(b_corners_, pb, b_parts_);
-        cut(a, b, a_parts_, b_parts_, glm::normalize(common), tolerance, out);
-        cut(b, a, b_parts_, a_parts_, glm::normalize(common), tolerance, out);
+        if (cut_a) cut(a, b, a_corners_, a_parts_, b_parts_, glm::normalize(common), tolerance, !b_straddles, out);
+        if (cut_b) cut(b, a, b_corners_, b_parts_, a_parts_, glm::normalize(common), tolerance, !a_straddles, out);
     }
 
 private:
-    /// Appends the segments where polygon `by` (its convex parts) passes through polygon f.
-    void cut(std::size_t f, std::size_t by, const std::vector<std::vector<DVec3>>& f_parts,
-             const std::vector<std::vector<DVec3>>& by_parts, const DVec3& along, double tolerance,
-             std::vector<CutSegment>& out) const {
+    /// Appends the segments where polygon `by` (its convex parts) passes through or stands on polygon
+    /// f. A contact along f's own outline (a concave f sharing an edge with `by`) is no cut: it would
+    /// only stop colours blending across a shared edge.
+    void cut(std::size_t f, std::size_t by, const std::vector<DVec3>& f_corners,
+             const std::vector<std::vector<DVec3>>& f_parts, const std::vector<std::vector<DVec3>>& by_parts,
+             const DVec3& along, double tolerance, bool contact, std::vector<CutSegment>& out) const {
         for (const auto& by_part : by_parts) {
             DVec3 a, b;
             if (!crossing(by_part, plane_[f], along, tolerance, a, b)) continue;
             for (const auto& f_part : f_parts) {
                 DVec3 ca = a, cb = b;
-                if (clip_segment(f_part, plane_[f].normal, tolerance, ca, cb))
+                if (clip_segment(f_part, plane_[f].normal, tolerance, ca, cb) &&
+                    !(contact && on_outline(f_corners, 0.5 * (ca + cb), tolerance)))
                     out.push_back({static_cast<int32_t>(f), static_cast<int32_t>(by), ca, cb});
             }
         }
@@ -120,6 +159,7 @@ private:
 
     const SceneInput& in_;
     const std::vector<Plane>& plane_;
+    double contact_tolerance_;
     std::vector<DVec3> a_corners_, b_corners_;
     std::vector<std::vector<DVec3>> a_parts_, b_parts_;
 };
@@ -145,12 +185,17 @@ double plane_tolerance(const std::vector<DVec3>& p) {
     return std::max(1e-5 * longest, 16.0 * std::numeric_limits<float>::epsilon() * magnitude);
 }
 
-std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vector<char>& usable) {
+std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vector<char>& usable, bool contacts) {
     std::vector<int32_t> polygon;  // tree index -> polygon
     std::vector<Box> boxes;
     for (std::size_t f = 0; f < in.face_count; ++f)
         if (usable[f]) polygon.push_back(static_cast<int32_t>(f)), boxes.push_back(bounding_box(in, f));
     const BoxTree tree(boxes);
+    Box scene{glm::vec3(std::numeric_limits<float>::infinity()), glm::vec3(-std::numeric_limits<float>::infinity())};
+    for (const Box& box : boxes) scene.lo = glm::min(scene.lo, box.lo), scene.hi = glm::max(scene.hi, box.hi);
+    // As weld_tolerance: 1e-5 of the scene's diagonal.
+    const double contact_tolerance =
+        !contacts ? -1.0 : boxes.empty() ? 0.0 : 1e-5 * glm::length(glm::dvec3(scene.hi) - glm::dvec3(scene.lo));
     std::vector<Plane> planes(in.face_count);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.face_count), [&](const auto& range) {
         std::vector<DVec3> p;
@@ -164,7 +209,7 @@ std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vect
             plane.convex = p.size() == 3 || is_convex(p, plane.normal);
         }
     });
-    tbb::enumerable_thread_specific<Finder> finders(in, planes);
+    tbb::enumerable_thread_specific<Finder> finders(in, planes, contact_tolerance);
     tbb::enumerable_thread_specific<std::vector<CutSegment>> found;
     tree.visit_overlapping_pairs([&](int32_t i, int32_t j) {
         finders.local().cut_pair(std::size_t(polygon[i]), std::size_t(polygon[j]), boxes[i], boxes[j], found.local());

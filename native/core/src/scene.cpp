@@ -317,7 +317,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         else usable[f] = 1;
     }
     const std::vector<detail::CutSegment> cuts =
-        limits.cut_intersections ? detail::find_intersections(in, usable) : std::vector<detail::CutSegment>{};
+        limits.cut_intersections ? detail::find_intersections(in, usable, limits.cut_contacts) : std::vector<detail::CutSegment>{};
 
     auto cut = cuts.begin();
     for (std::size_t f = 0; f < in.face_count; ++f) {

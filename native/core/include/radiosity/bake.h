@@ -22,8 +22,8 @@ struct BakeSettings {
     int resolution = 128;            ///< hemi-cube cells per full face edge
     SolveSettings solve;
     float hard_edge_angle = 0.5236f; ///< radians (30 degrees)
-    /// Element cap and sliver split (docs/stability.md).
-    ElementLimits limits;
+    /// Element cap, sliver split, intersection and contact cuts (docs/stability.md).
+    ElementLimits limits = ElementLimits().with_contacts();
     /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
     /// elements; see RowSettings::rotations). 1 = the seed's single hemi-cube.
     int hemicube_rotations = 1;
