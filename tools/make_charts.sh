@@ -31,7 +31,8 @@ step_bake_vs_cycles() {
     "$charts/bake_vs_cycles_ratios.txt"
 }
 
-# Charts 1 and 3 and the aliasing chart: native measurements (radiosity_charts, about 2 minutes).
+# Charts 1 and 3, the aliasing chart and the stability cases before and after (stability_before_after.png):
+# native measurements (radiosity_charts, about 2 minutes).
 step_native() {
   cmake --build "$build" -j "$(nproc)" --target radiosity_charts >/dev/null
   "$build/native/bench/radiosity_charts" "$charts"

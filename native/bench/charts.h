@@ -13,6 +13,8 @@ void form_factors(const std::string& csv_path);
 void aliasing(const std::string& csv_path);
 /// Chart 3: residual against sweep and time for each solver at rho 0.5, 0.9, 0.99.
 void convergence(const std::string& csv_path);
+/// Stability cases (slivers, intersections, contacts, pin-holes): error before and after the mitigation.
+void stability(const std::string& csv_path);
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

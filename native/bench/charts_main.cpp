@@ -1,5 +1,5 @@
 /// @file charts_main.cpp
-/// @brief radiosity_charts OUTPUT_DIR [form_factors|aliasing|convergence ...]: writes the CSVs of
+/// @brief radiosity_charts OUTPUT_DIR [form_factors|aliasing|convergence|stability ...]: writes the CSVs of
 /// the native charts (all of them without names). tools/make_charts.sh runs it and plots.
 #include "charts.h"
 
@@ -11,12 +11,12 @@
 int main(int argc, char** argv) {
     using namespace radiosity::charts;
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s OUTPUT_DIR [form_factors|aliasing|convergence ...]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s OUTPUT_DIR [form_factors|aliasing|convergence|stability ...]\n", argv[0]);
         return 2;
     }
     const std::string dir = argv[1];
     const std::map<std::string, std::function<void(const std::string&)>> charts{
-        {"form_factors", form_factors}, {"aliasing", aliasing}, {"convergence", convergence}};
+        {"form_factors", form_factors}, {"aliasing", aliasing}, {"convergence", convergence}, {"stability", stability}};
     std::vector<std::string> names;
     for (int k = 2; k < argc; ++k) names.emplace_back(argv[k]);
     if (names.empty())
