@@ -101,8 +101,8 @@ TEST(Contacts, CutAlongTheOutlineKeepsTheFootprintDarkAndTheFloorLit) {
     for (float size : {0.3f, 0.12f}) {
         const ContactMeasure m = measure(size, true);
         EXPECT_EQ(m.straddling, 0);
-        // The sun's irradiance is exact up to its raster (1024 cells across the scene) at element
-        // outlines; these outlines are axis-aligned, and the measured errors are 0 to float round-off.
+        // The truth is exact (0 under the box, rho E / pi around it): only float round-off may remain
+        // (measured 0).
         EXPECT_LT(m.footprint, 1e-5);
         EXPECT_LT(m.lit_ring, 1e-5);
         // Corner colours are not blended across the outline: each side is extrapolated from its own.
