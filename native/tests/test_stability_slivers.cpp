@@ -194,3 +194,31 @@ TEST(SliverTriangles, CylinderCapFanStaysConforming) {
     t_vertex_crack(bake(scene.input(), s), t_vertices);
     EXPECT_EQ(t_vertices, 0);
 }
+
+TEST(SliverTriangles, StripsTileTheTriangleWithoutTVertices) {
+    // Alone (no neighbour), with one element across and with several (element_size below the far
+    // edge): the strips cover the triangle exactly and meet each other only at shared vertices.
+    for (const std::vector<Vec3>& triangle : {std::vector<Vec3>{{0, 0.195f, 0}, {1, 0.195f, 0}, {0, 0.205f, 0}},
+                                              std::vector<Vec3>{{0, 0.2f, 0}, {1, 0.2f, 0}, {0.3f, 0.22f, 0}}})
+        for (float size : {0.0f, 0.008f}) {
+            const auto scene = lamp_over({triangle});
+            BakeSettings s;
+            s.element_size = size;
+            s.resolution = 32;
+            s.limits.max_aspect = 4.0f;
+            const BakeResult r = bake(scene.input(), s);
+            const Elements& e = r.build.elements;
+            double area = 0.0;
+            std::size_t count = 0;
+            for (std::size_t i = 0; i < e.size(); ++i)
+                if (e.polygon[i] == 1) area += e.area[i], ++count;
+            const double exact = 0.5 * glm::length(glm::cross(glm::dvec3(triangle[1] - triangle[0]), glm::dvec3(triangle[2] - triangle[0])));
+            int t_vertices = 0;
+            t_vertex_crack(r, t_vertices);
+            std::printf("triangle with apex (%.1f, %.2f), element size %.3f: %zu elements\n", triangle[2].x, triangle[2].y,
+                        size, count);
+            EXPECT_NEAR(area, exact, 1e-6 * exact);
+            EXPECT_EQ(t_vertices, 0);
+            EXPECT_GT(count, 10u);
+        }
+}
