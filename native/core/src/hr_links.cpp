@@ -72,6 +72,17 @@ uint32_t pair_seed(const Node& r, const Node& s) {
     return h;
 }
 
+/// The fractions of the segment a - b where it enters and leaves node n's bounding sphere
+/// (entry < 0: a is inside); {1, 1} when it misses the sphere.
+std::pair<float, float> sphere_span(const Vec3& a, const Vec3& b, const Node& n) {
+    const glm::dvec3 d(b - a), m(a - n.centre);
+    const double dd = glm::dot(d, d), md = glm::dot(m, d);
+    const double discriminant = md * md - dd * (glm::dot(m, m) - double(n.radius) * double(n.radius));
+    if (!(dd > 0.0) || discriminant < 0.0) return {1.0f, 1.0f};
+    const double root = std::sqrt(discriminant);
+    return {float((-md - root) / dd), float(std::clamp((-md + root) / dd, 0.0, 1.0))};
+}
+
 }  // namespace
 
 Refiner::Estimate Refiner::must_split(bool source_side) {
@@ -271,7 +282,17 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     int clear = 0;
     for (int k = 0; k < rays; ++k) {
         const Vec3& a = from[k % from_count];
-        clear += sun ? visibility_.clear_towards(a, -s.normal) : visibility_.clear(a, Q[(k + 1) % nq]);
+        if (sun) {
+            clear += visibility_.clear_towards(a, -s.normal);
+            continue;
+        }
+        // A cluster's own surfaces hiding its other parts are in its intensity (sources) or its
+        // ambient cube (receivers), not in the visibility between the two: rays count only
+        // occluders between the clusters' bounding spheres.
+        const Vec3& q = Q[(k + 1) % nq];
+        const float begin = r.kind == Kind::Cluster ? sphere_span(a, q, r).second : 0.0f;
+        const float end = s.kind == Kind::Cluster ? sphere_span(a, q, s).first : 1.0f;
+        clear += visibility_.clear(a, q, begin, end < 0.0f ? 1.0f : end);
     }
     e.rays = rays;
     const double visible = double(clear) / rays;
@@ -393,10 +414,14 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         Node& r = tree_.nodes[receiver];
         // The errors of a receiver's links add up at its leaves (they often err the same way, as
         // near a corner), so it is their sum that must stay below the threshold: the largest
-        // are refined until the rest fit.
+        // are refined until the rest fit. Links between two nodes that cannot split keep their
+        // error whatever is refined; counting it would refine every other link, every round.
+        const bool receiver_splits = r.kind == Kind::Cluster || tree_.can_split(r);
         std::vector<std::pair<double, std::size_t>> errors;
         double total = 0.0;
         for (std::size_t k = 0; k < r.links.size(); ++k) {
+            const Node& s = tree_.nodes[r.links[k].source];
+            if (!receiver_splits && s.kind != Kind::Cluster && !tree_.can_split(s)) continue;
             errors.emplace_back(error(r, r.links[k], split_at_start(receiver)), k);
             total += errors.back().first;
         }
@@ -405,11 +430,8 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         std::vector<bool> refine_link(r.links.size(), false);
         for (const auto& [link_error, k] : errors) {
             if (total <= threshold) break;
-            const Node& s = tree_.nodes[r.links[k].source];
-            if (r.kind == Kind::Cluster || tree_.can_split(r) || s.kind == Kind::Cluster || tree_.can_split(s)) {
-                refine_link[k] = true;
-                total -= link_error;
-            }
+            refine_link[k] = true;
+            total -= link_error;
         }
         std::vector<Link> kept;
         for (std::size_t k = 0; k < r.links.size(); ++k) {

@@ -55,13 +55,17 @@ bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_nea
     return ray.tfar < 0.0f;  // Embree marks a hit by tfar = -inf
 }
 
-bool Visibility::clear(const Vec3& from, const Vec3& to) const {
+bool Visibility::clear(const Vec3& from, const Vec3& to) const { return clear(from, to, 0.0f, 1.0f); }
+
+bool Visibility::clear(const Vec3& from, const Vec3& to, float begin, float end) const {
     const Vec3 d = to - from;
     const float length = glm::length(d);
     if (!(length > 0.0f)) return true;
     const float end_gap = std::max(1e-4f, gap_ / length);  // in units of the segment
-    if (end_gap >= 0.5f) return true;
-    return !occluded(from, d, end_gap, 1.0f - end_gap);
+    begin = std::max(begin, end_gap);
+    end = std::min(end, 1.0f - end_gap);
+    if (!(begin < end)) return true;
+    return !occluded(from, d, begin, end);
 }
 
 bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {

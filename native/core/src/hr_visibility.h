@@ -23,6 +23,8 @@ public:
     /// True when nothing lies strictly between `from` and `to` (their own surfaces excluded by a
     /// gap of 1e-6 of the scene size, at least 1e-4 of the segment). Thread-safe.
     bool clear(const Vec3& from, const Vec3& to) const;
+    /// The same for the part of the segment between fractions `begin` and `end` of its length.
+    bool clear(const Vec3& from, const Vec3& to, float begin, float end) const;
     /// True when nothing lies along `direction` (unit) from `from` out of the scene.
     bool clear_towards(const Vec3& from, const Vec3& direction) const;
 
