@@ -198,6 +198,26 @@ def small_lamp_over_floor(side, height=1.5, rho=0.5, radiance=1000.0):
     return obj, lamp[0][lamp[1][0]]
 
 
+def slab_over_floor(gap):
+    """A 0.8 x 0.8 x 0.05 m white slab `gap` metres over a white 2 x 2 m floor (8 x 8 faces,
+    reflectance 0.8), lit by a 0.5 m emitting square (radiance 10, material 1) 1.5 m up, facing
+    down: the contact shadow where elements are larger than the gap between them. Returns the
+    object."""
+    x0, x1, z0, z1 = 0.6, 1.4, gap, gap + 0.05
+    slab = [
+        grid((x0, x0, z1), (x1 - x0, 0, 0), (0, x1 - x0, 0), 4, 4),   # top, +Z
+        grid((x0, x0, z0), (0, x1 - x0, 0), (x1 - x0, 0, 0), 4, 4),   # bottom, -Z
+        grid((x0, x0, z0), (x1 - x0, 0, 0), (0, 0, z1 - z0), 4, 1),   # -Y
+        grid((x0, x1, z0), (0, 0, z1 - z0), (x1 - x0, 0, 0), 1, 4),   # +Y
+        grid((x0, x0, z0), (0, 0, z1 - z0), (0, x1 - x0, 0), 1, 4),   # -X
+        grid((x1, x0, z0), (0, x1 - x0, 0), (0, 0, z1 - z0), 4, 1),   # +X
+    ]
+    pieces = [grid((0, 0, 0), (2, 0, 0), (0, 2, 0), 8, 8) + (0,)] + [piece + (0,) for piece in slab]
+    pieces.append(grid((0.75, 0.75, 1.5), (0, 0.5, 0), (0.5, 0, 0), 2, 2) + (1,))
+    return mesh_object("Slab over Floor", pieces,
+                       [diffuse("White", (0.8, 0.8, 0.8)), emission("Lamp", (1.0, 1.0, 1.0), 10.0)])
+
+
 def _block(xy0, xy1, height, cell):
     """The five visible faces of an axis-aligned block standing on the floor (outward normals)."""
     (x0, y0), (x1, y1) = xy0, xy1

@@ -16,10 +16,6 @@ MEBIBYTE = 1 << 20
 # recommended omega (over_relaxation 0 = automatic), which pays off where reflectance is near 1.
 MAX_ELEMENT_ASPECT = 4.0
 AUTOMATIC_OVER_RELAXATION = 0.0
-# The near-field correction stays off: on the Cornell box it moved no preset measurably closer to
-# Cycles' converged bake (5.75/2.78/2.25% off, on: 5.73/2.78/2.24%, docs/charts/bake_vs_cycles_ratios.txt),
-# and it changes the factors every Cycles comparison was measured with.
-NEAR_FIELD = False
 # The core's largest resolution. Beyond it a preset averages hemi-cubes turned about the normal:
 # a factor's aliasing error goes as cells^-0.7 and as rotations^-0.5 (docs/stability.md), so
 # needing N > 1024 takes (N / 1024)^2.8 rotations for the same error, at most MAX_ROTATIONS
@@ -35,16 +31,21 @@ class Preset:
     cells: float        # hemi-cube cells the smallest elements and emitters must cover (accuracy target)
     tolerance: float
     refine_tolerance: float  # hierarchical: error per link, share of the mean reflected radiance
+    near_field: bool    # exact area factors between elements closer than their size
 
 
 # Cells: the smallest tenth of the elements (and of the emitting elements), seen head-on from half
 # the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
 # RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236 (before: fixed 64,
 # 128, 192); a 2 cm lamp 1.5 m over a floor makes Draft 322 (blender_tests/test_quality.py).
+# Near field, measured against Cycles (docs/accuracy.md): a slab 5 mm over a floor, corners under
+# and around it, Medium 7.5% -> 5.6% RMS and High 7.9% -> 7.1% with it, at the same time; the
+# Cornell box unchanged. At Draft's resolution it made the slab worse (15.7% -> 16.5%, bias +9% ->
+# +13%: partly hidden near pairs count as unhidden), so Draft leaves it off.
 PRESETS = {
-    "DRAFT": Preset(16, 4.0, 1e-3, 0.05),
-    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02),
-    "HIGH": Preset(48, 8.0, 1e-5, 0.01),
+    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True),
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True),
 }
 
 
@@ -63,11 +64,12 @@ class Choice:
     max_element_aspect: float   # 0 = slivers kept (the zonal bake does not cut them)
     hemicube_rotations: int     # hemi-cubes per element, turned about the normal (1 = one)
     resolution_reason: str      # why this resolution, in words for the summary
+    near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
 
     def stability_keywords(self):
         """The stability settings _core.bake takes for this choice."""
         keywords = {"max_element_aspect": self.max_element_aspect, "hemicube_rotations": self.hemicube_rotations,
-                    "near_field": NEAR_FIELD}
+                    "near_field": self.near_field}
         if self.method == "gauss_seidel":
             keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
         return keywords
@@ -159,7 +161,9 @@ def choose(settings, exported, zonal=False):
                   refine_tolerance=refine_tolerance, method=method,
                   elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
                   max_element_aspect=max_element_aspect, hemicube_rotations=chosen.rotations,
-                  resolution_reason=chosen.reason)
+                  resolution_reason=chosen.reason,
+                  # The hierarchy traces rays and the zonal bake takes no stability settings.
+                  near_field=preset is not None and preset.near_field and method != "hierarchical" and not zonal)
 
 
 def warnings_for(choice):

@@ -128,7 +128,7 @@ class BakeJob:
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
             "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,
-            "resolution_reason": c.resolution_reason,
+            "resolution_reason": c.resolution_reason, "near_field": c.near_field,
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
             "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
             "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
@@ -185,9 +185,10 @@ def accuracy_line(summary):
             power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
         "Error typically %s %.1f%% (element size, measured on the Cornell box) + at most %.2g%% (solve)" % (
             error["discretisation_relation"], 100 * error["discretisation"], 100 * error["solve_bound"]),
-        "Hemi-cube resolution %d%s: %s" % (
+        "Hemi-cube resolution %d%s%s: %s" % (
             summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
-            if summary["hemicube_rotations"] > 1 else "", summary["resolution_reason"]),
+            if summary["hemicube_rotations"] > 1 else "", ", near field" if summary["near_field"] else "",
+            summary["resolution_reason"]),
     ))
 
 
@@ -231,7 +232,7 @@ def progress_text(info, tolerance):
 def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
-    resolution_reason, tolerance, matrix memory),
+    resolution_reason, near_field, tolerance, matrix memory),
     energy (watts emitted, absorbed, lost), error_estimate (solve bound, measured discretisation
     error), warnings, and seconds per phase (export, form_factors, solve, writeback).
 

@@ -14,8 +14,8 @@ the chart and prints the time ratios.) Scenes:
 
 Gauss-Seidel is the over-relaxed one the add-on runs (the core's automatic omega); plain
 Gauss-Seidel (omega 1), labelled GAUSS_SEIDEL_PLAIN, is measured beside it to show the gain. The
-presets are baked as the add-on chooses them, and once more with the near-field correction on
-(column near_field), the evidence for leaving it off.
+presets are baked with the near-field correction off and on (column near_field; the add-on
+turns it on at Medium and High).
 
 Error: relative RMS over the corners (all three channels) not on the emitter. Time of the whole
 bake (add-on export to written attribute; Cycles from the operator's call to its return), as CPU
@@ -25,6 +25,7 @@ count other jobs) and as wall-clock seconds. Writes one CSV row per bake."""
 import argparse
 import contextlib
 import csv
+import dataclasses
 import math
 import os
 import sys
@@ -138,14 +139,16 @@ def patched(name, value):
         setattr(auto_settings, name, kept)
 
 
-def radiosity_bake(addon, obj, method=None, near_field=False, **settings):
+def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     """(corner colours, Stopwatch, summary) of a whole add-on bake; method GAUSS_SEIDEL_PLAIN is
-    Gauss-Seidel without over-relaxation."""
+    Gauss-Seidel without over-relaxation; near_field True or False overrides the presets' own."""
     if method is not None:
         settings["method"] = "GAUSS_SEIDEL" if method == "GAUSS_SEIDEL_PLAIN" else method
     auto_settings = sys.modules["bake_radiosity.auto_settings"]
     omega = 1.0 if method == "GAUSS_SEIDEL_PLAIN" else auto_settings.AUTOMATIC_OVER_RELAXATION
-    with patched("AUTOMATIC_OVER_RELAXATION", omega), patched("NEAR_FIELD", near_field), Stopwatch() as seconds:
+    presets = auto_settings.PRESETS if near_field is None else {
+        name: dataclasses.replace(preset, near_field=near_field) for name, preset in auto_settings.PRESETS.items()}
+    with patched("AUTOMATIC_OVER_RELAXATION", omega), patched("PRESETS", presets), Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", **settings)
     return corner_colors(obj.data, "Radiosity"), seconds, summary
 
@@ -191,7 +194,7 @@ def cornell_rows(addon):
             colors, seconds, summary = radiosity_bake(addon, box, quality=quality, near_field=near_field)
             rows.append(row("cornell", "radiosity", seconds, relative_rms(colors[keep], radiosity_reference),
                             relative_rms(colors[keep], cycles_reference, cycles_noise),
-                            method=summary["method"].upper(), quality=quality, near_field=int(near_field),
+                            method=summary["method"].upper(), quality=quality, near_field=int(summary["near_field"]),
                             element_size=summary["element_size"], resolution=summary["resolution"],
                             tolerance=summary["tolerance"], elements=summary["elements"]))
     for samples in CYCLES_SAMPLES:

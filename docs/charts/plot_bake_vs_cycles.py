@@ -9,8 +9,8 @@ converged bake, the Cornell box against Cycles' converged bake (physical truth),
 against its exact answer. One line per method and hemi-cube resolution (points: element sizes,
 or tolerances in the furnace), Cycles' sample ladder, the quality presets as labelled stars.
 Gauss-Seidel is the over-relaxed solve the add-on runs; plain Gauss-Seidel (omega 1) is drawn
-beside it. The presets baked with the near-field correction (near_field 1) are listed in the ratios
-file, not drawn (they fall on the presets' stars)."""
+beside it. Presets with the near-field correction (near_field 1; the add-on's Medium and High) are
+hollow stars, without it filled ones; the ratios file lists both."""
 
 import csv
 import math
@@ -75,9 +75,11 @@ def draw(axis, rows, scene, column, title):
     for seconds, error, samples in cycles:
         axis.annotate(str(samples), (seconds, error), textcoords="offset points", xytext=(4, 2), fontsize=7)
     for row in rows:
-        if (row["scene"] == scene and row["renderer"] == "radiosity" and row["quality"] != "CUSTOM"
-                and not near_field(row)):
+        if row["scene"] == scene and row["renderer"] == "radiosity" and row["quality"] != "CUSTOM":
             point = (float(row[CLOCK]), float(row[column]))
+            if near_field(row):
+                axis.plot(*point, "*", color="crimson", markersize=15, markerfacecolor="none")
+                continue
             axis.plot(*point, "*", color="crimson", markersize=11)
             axis.annotate(row["quality"].title(), point, textcoords="offset points", xytext=(5, -9),
                           fontsize=8, color="crimson")
