@@ -156,8 +156,8 @@ def test_panel_shows_quality_and_summary():
     settings.quality = "MEDIUM"
     drawn = drawn_panel()
     assert "quality" in drawn and "memory_budget" in drawn and "element_size" not in drawn, drawn
-    assert "Elements 1/32 of the scene, resolution from the scene (6 cells), tolerance 0.0001, refinement 0.02" \
-        in drawn, drawn
+    assert "Elements 1/32 of the scene, resolution from the scene (6 cells), near field, tolerance 0.0001, " \
+           "refinement 0.02" in drawn, drawn
     settings.quality = "CUSTOM"
     drawn = drawn_panel()
     for name in ("method", "element_size", "hemicube_resolution", "tolerance", "max_iterations"):

@@ -23,9 +23,9 @@ class RadiositySettings(bpy.types.PropertyGroup):
             ("DRAFT", "Draft", "Quick look: elements 1/16 of the scene's size, resolution for 4 cells, "
              "tolerance 1e-3, refinement 0.05"),
             ("MEDIUM", "Medium", "Most bakes: elements 1/32 of the scene's size, resolution for 6 cells, "
-             "tolerance 1e-4, refinement 0.02"),
+             "near-field correction, tolerance 1e-4, refinement 0.02"),
             ("HIGH", "High", "Final bakes: elements 1/48 of the scene's size, resolution for 8 cells, "
-             "tolerance 1e-5, refinement 0.01"),
+             "near-field correction, tolerance 1e-5, refinement 0.01"),
             ("CUSTOM", "Custom", "Set element size, resolution, tolerance and method yourself"),
         ),
         default="MEDIUM",
