@@ -17,6 +17,11 @@ Gauss-Seidel (omega 1), labelled GAUSS_SEIDEL_PLAIN, is measured beside it to sh
 presets are baked with the near-field correction off and on (column near_field; the add-on
 turns it on at Medium and High).
 
+With --near-field-csv instead of --csv it measures only the evidence for the presets' near-field
+choice (docs/accuracy.md): scenes.slab_over_floor at gaps of 5 mm and 2 cm, each preset with the
+correction off and on, against Cycles' bake (two halves of 8192 samples), on the corners under and
+around the slab and its underside; about 6 minutes.
+
 Error: relative RMS over the corners (all three channels) not on the emitter. Time of the whole
 bake (add-on export to written attribute; Cycles from the operator's call to its return), as CPU
 seconds of this process (all threads: the machine this runs on is shared, and CPU time does not
@@ -61,7 +66,9 @@ def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     parser = argparse.ArgumentParser()
     parser.add_argument("--addon-zip", required=True)
-    parser.add_argument("--csv", required=True)
+    target = parser.add_mutually_exclusive_group(required=True)
+    target.add_argument("--csv")
+    target.add_argument("--near-field-csv")
     return parser.parse_args(argv)
 
 
@@ -226,13 +233,51 @@ def furnace_rows(addon):
     return rows
 
 
+SLAB_GAPS = (0.005, 0.02)
+SLAB_CYCLES_SAMPLES = 8192
+SLAB_FIELDS = ("gap", "quality", "near_field", "elements", "element_size", "resolution", "cpu_seconds", "error",
+               "mean_error")
+
+
+def slab_rows(addon):
+    rows = []
+    for gap in SLAB_GAPS:
+        scenes.clear_scene()
+        slab = scenes.slab_over_floor(gap)
+        mesh = slab.data
+        positions = np.empty(len(mesh.vertices) * 3)
+        mesh.vertices.foreach_get("co", positions)
+        loops = np.empty(len(mesh.loops), dtype=np.int64)
+        mesh.loops.foreach_get("vertex_index", loops)
+        p = positions.reshape(-1, 3)[loops]
+        around = (((p[:, 2] == 0) & (np.abs(p[:, 0] - 1) <= 0.6) & (np.abs(p[:, 1] - 1) <= 0.6))
+                  | (np.abs(p[:, 2] - gap) < 1e-6))
+        halves = [cycles_bake(slab, SLAB_CYCLES_SAMPLES, seed)[0][around] for seed in (1, 2)]
+        reference = 0.5 * (halves[0] + halves[1])
+        noise = relative_rms(halves[0], halves[1]) / 2
+        for quality in ("DRAFT", "MEDIUM", "HIGH"):
+            for near_field in (False, True):
+                colors, seconds, summary = radiosity_bake(addon, slab, quality=quality, near_field=near_field)
+                entry = dict(gap=gap, quality=quality, near_field=int(near_field), elements=summary["elements"],
+                             element_size="%.4g" % summary["element_size"], resolution=summary["resolution"],
+                             cpu_seconds="%.3f" % seconds.cpu,
+                             error="%.5f" % relative_rms(colors[around], reference, noise),
+                             mean_error="%+.5f" % (colors[around].mean() / reference.mean() - 1))
+                print(entry, flush=True)
+                rows.append(entry)
+    return rows
+
+
 def main():
     args = arguments()
     addon = install_addon(args.addon_zip)
     start = time.perf_counter()
-    rows = furnace_rows(addon) + cornell_rows(addon)
-    with open(args.csv, "w", newline="") as out:
-        writer = csv.DictWriter(out, fieldnames=FIELDS, restval="")
+    if args.near_field_csv:
+        path, fields, rows = args.near_field_csv, SLAB_FIELDS, slab_rows(addon)
+    else:
+        path, fields, rows = args.csv, FIELDS, furnace_rows(addon) + cornell_rows(addon)
+    with open(path, "w", newline="") as out:
+        writer = csv.DictWriter(out, fieldnames=fields, restval="")
         writer.writeheader()
         writer.writerows(rows)
     print("whole run %.0f s wall clock" % (time.perf_counter() - start), flush=True)
