@@ -83,6 +83,9 @@ std::pair<float, float> sphere_span(const Vec3& a, const Vec3& b, const Node& n)
     return {float((-md - root) / dd), float(std::clamp((-md + root) / dd, 0.0, 1.0))};
 }
 
+/// Estimates one task makes before it hands its remaining pairs on (some 10 ms).
+constexpr int kEstimatesPerTask = 4096;
+
 }  // namespace
 
 Refiner::Estimate Refiner::must_split(bool source_side) {
@@ -332,7 +335,22 @@ double Refiner::error(const Node& receiver, const Link& link, bool receiver_spli
     return doubt * strength;
 }
 
-void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& out, std::size_t& rays, bool split) {
+void Refiner::link_depth_first(const Pending& pair, double threshold, Output& out, std::vector<Pending>& next,
+                               std::size_t& rays) {
+    std::vector<Pending> stack{pair};
+    for (int estimates = 0; !stack.empty(); ++estimates) {
+        if (estimates == kEstimatesPerTask) {
+            next.insert(next.end(), stack.begin(), stack.end());
+            return;
+        }
+        const Pending top = stack.back();
+        stack.pop_back();
+        link(top, threshold, out, stack, rays);
+    }
+}
+
+void Refiner::link(const Pending& pair, double threshold, Output& out, std::vector<Pending>& stack, std::size_t& rays) {
+    const auto [receiver, source, split] = pair;
     const Estimate e = estimate(receiver, source);
     rays += e.rays;
     if (!e.useful) return;
@@ -351,11 +369,11 @@ void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& o
         const bool source_first = source_side || !r_splits;
         for (const bool split_source : {source_first, !source_first}) {
             if (split_source && s_splits && (s.kind == Kind::Cluster || tree_.subdivide(source))) {
-                for (int k = 0; k < s.child_count; ++k) link(receiver, child(s, k), threshold, out, rays);
+                for (int k = s.child_count; k-- > 0;) stack.push_back({receiver, child(s, k), false});
                 return;
             }
             if (!split_source && r_splits && (r.kind == Kind::Cluster || tree_.subdivide(receiver))) {
-                for (int k = 0; k < r.child_count; ++k) link(child(r, k), source, threshold, out, rays);
+                for (int k = r.child_count; k-- > 0;) stack.push_back({child(r, k), source, false});
                 return;
             }
         }
@@ -363,12 +381,31 @@ void Refiner::link(int32_t receiver, int32_t source, double threshold, Output& o
     out.emplace_back(receiver, e.link);
 }
 
-void Refiner::link_pair_within(int32_t cluster, double threshold, Output& out, std::size_t& rays) {
-    const Node& c = tree_.nodes[cluster];
-    if (c.kind != Kind::Cluster) return;
-    const int32_t a = child(c, 0), b = child(c, 1);
-    link(a, b, threshold, out, rays);
-    link(b, a, threshold, out, rays);
+void Refiner::link_all(std::vector<Pending> pending, double threshold, const ProgressFn& progress) {
+    tbb::enumerable_thread_specific<Output> outputs;
+    tbb::enumerable_thread_specific<std::size_t> rays(0);
+    std::size_t done = 0;  // pairs of the levels before: the bar counts pairs over all levels
+    ProgressFn level_progress;
+    if (progress)
+        level_progress = [&](const Progress& p) {
+            Progress all = p;
+            all.done = done + p.done;
+            all.total = done + p.total;
+            return progress(all);
+        };
+    while (!pending.empty()) {
+        tbb::enumerable_thread_specific<std::vector<Pending>> next;
+        detail::parallel_rows(pending.size(), 16, 0, level_progress, [&](std::size_t i) {
+            link_depth_first(pending[i], threshold, outputs.local(), next.local(), rays.local());
+            return true;
+        });
+        done += pending.size();
+        pending.clear();
+        for (const auto& level : next) pending.insert(pending.end(), level.begin(), level.end());
+    }
+    for (auto& output : outputs)
+        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
+    for (std::size_t r : rays) rays_ += r;
 }
 
 void Refiner::take_split_snapshot() {
@@ -384,22 +421,15 @@ void Refiner::link_initial(const ProgressFn& progress) {
     take_split_snapshot();
     // Every cluster's two children see each other; together these pairs cover every pair of
     // patches once in each direction. Lamps light the whole scene through the root.
-    std::vector<int32_t> jobs;
-    for (std::size_t n = tree_.patch_count; n < tree_.patch_count + tree_.cluster_count; ++n)
-        jobs.push_back(static_cast<int32_t>(n));
+    std::vector<Pending> pending;
+    for (std::size_t n = tree_.patch_count; n < tree_.patch_count + tree_.cluster_count; ++n) {
+        const Node& c = tree_.nodes[n];
+        pending.push_back({child(c, 0), child(c, 1), false});
+        pending.push_back({child(c, 1), child(c, 0), false});
+    }
     if (tree_.root >= 0)  // every polygon may have been skipped (degenerate): nothing to light
-        for (int32_t lamp : tree_.lamp_nodes) jobs.push_back(-1 - lamp);
-    tbb::enumerable_thread_specific<Output> outputs;
-    tbb::enumerable_thread_specific<std::size_t> rays(0);
-    const double no_refinement = std::numeric_limits<double>::infinity();
-    detail::parallel_rows(jobs.size(), 64, 0, progress, [&](std::size_t i) {
-        if (jobs[i] >= 0) link_pair_within(jobs[i], no_refinement, outputs.local(), rays.local());
-        else link(tree_.root, -1 - jobs[i], no_refinement, outputs.local(), rays.local());
-        return true;
-    });
-    for (auto& output : outputs)
-        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
-    for (std::size_t r : rays) rays_ += r;
+        for (int32_t lamp : tree_.lamp_nodes) pending.push_back({tree_.root, lamp, false});
+    link_all(std::move(pending), std::numeric_limits<double>::infinity(), progress);
 }
 
 std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
@@ -407,8 +437,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
     for (std::size_t n = 0; n < tree_.nodes.size(); ++n)
         if (!tree_.nodes[n].links.empty()) receivers.push_back(static_cast<int32_t>(n));
     take_split_snapshot();
-    tbb::enumerable_thread_specific<Output> outputs;
-    tbb::enumerable_thread_specific<std::size_t> rays(0), refined(0);
+    tbb::enumerable_thread_specific<std::vector<Pending>> pending;
     detail::parallel_rows(receivers.size(), 16, 0, progress, [&](std::size_t i) {
         const int32_t receiver = receivers[i];
         Node& r = tree_.nodes[receiver];
@@ -439,17 +468,15 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
                 kept.push_back(r.links[k]);
                 continue;
             }
-            ++refined.local();
-            link(receiver, r.links[k].source, threshold, outputs.local(), rays.local(), true);
+            pending.local().push_back({receiver, r.links[k].source, true});
         }
         r.links = std::move(kept);  // only this task touches r's own list; new links wait below
         return true;
     });
-    for (auto& output : outputs)
-        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
-    for (std::size_t r : rays) rays_ += r;
-    std::size_t count = 0;
-    for (std::size_t r : refined) count += r;
+    std::vector<Pending> all;
+    for (const auto& part : pending) all.insert(all.end(), part.begin(), part.end());
+    const std::size_t count = all.size();
+    link_all(std::move(all), threshold, progress);
     return count;
 }
 

@@ -36,6 +36,11 @@ private:
         int rays = 0;
     };
     using Output = std::vector<std::pair<int32_t, Link>>;
+    /// A pair of nodes waiting to be linked; `split`: split it at least once.
+    struct Pending {
+        int32_t receiver = -1, source = -1;
+        bool split = false;
+    };
 
     /// A pair whose estimate says nothing (too near, or a lamp over a cluster): it splits
     /// whatever the threshold (the source first when `source_side`); marked by the largest
@@ -48,10 +53,18 @@ private:
     /// The link's estimated radiance error; `receiver_split`: the receiver has children.
     double error(const Node& receiver, const Link& link, bool receiver_split) const;
     double source_error(const Link& link) const;  ///< the part of error() splitting the source reduces
-    /// Links `receiver` to `source`, splitting whichever is larger while the error is too large
-    /// (and at least once when `split`).
-    void link(int32_t receiver, int32_t source, double threshold, Output& out, std::size_t& rays, bool split = false);
-    void link_pair_within(int32_t cluster, double threshold, Output& out, std::size_t& rays);
+    /// Links the pending pairs, splitting them depth first while their error is too large. Pairs
+    /// still waiting after a bounded number of estimates go to the next level, and each level is
+    /// one parallel loop with progress and cancel: no pair (the root's two halves of a large
+    /// scene) holds the progress bar while it splits.
+    void link_all(std::vector<Pending> pending, double threshold, const ProgressFn& progress);
+    /// `pair` and the pairs it splits into, depth first, for at most `kEstimatesPerTask`
+    /// estimates; what is left goes into `next`.
+    void link_depth_first(const Pending& pair, double threshold, Output& out, std::vector<Pending>& next,
+                          std::size_t& rays);
+    /// One pair: its link into `out`, or, while the error is too large (or once when `split`), the
+    /// pairs of the larger end's children with the other end onto `stack`, first child on top.
+    void link(const Pending& pair, double threshold, Output& out, std::vector<Pending>& stack, std::size_t& rays);
     /// Sample points of a cluster: centres of its patches, picked by power or by area.
     int cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const;
 
