@@ -170,7 +170,7 @@ def warnings_for(choice):
     """Choices an artist made that will be slow, with what to do instead."""
     if choice.method in ("gauss_seidel", "jacobi") and choice.matrix_bytes_bound > choice.budget_bytes:
         return ["The form factors of %d elements may need %.0f MB, more than the memory budget (%.0f MB): "
-                "every sweep renders every hemi-cube again, which is slow. Method Automatic would shoot "
-                "progressively instead" % (choice.elements, choice.matrix_bytes_bound / MEBIBYTE,
-                                           choice.budget_bytes / MEBIBYTE)]
+                "every sweep renders every hemi-cube again, which is slow. Method Automatic would bake "
+                "hierarchically instead (progressively with fog or smoke)"
+                % (choice.elements, choice.matrix_bytes_bound / MEBIBYTE, choice.budget_bytes / MEBIBYTE)]
     return []
