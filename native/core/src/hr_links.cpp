@@ -268,7 +268,17 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     if (!std::isfinite(highest)) {  // a point source on the receiver: split, or no link
         return must_split();
     }
-    if (!(highest > 0.0)) return e;
+    if (!(highest > 0.0)) {
+        // A cluster's few sample points may all lie where the element at the other end cannot
+        // see them (a block face and the floor under the block, against the floor strip in front)
+        // while some of its parts can: split the pair rather than lose that light.
+        auto reaches_front = [](const Node& element, const Node& cluster) {
+            return glm::dot(element.normal, cluster.centre - element.centre) > -cluster.radius;
+        };
+        const bool may_reach = (s.kind == Kind::Cluster && r.is_element() && reaches_front(r, s)) ||
+                               (r.kind == Kind::Cluster && s.is_element() && reaches_front(s, r));
+        return may_reach ? must_split(s.kind == Kind::Cluster) : e;
+    }
 
     // Coarse element receivers get rays from jittered points: 16, or for a lamp one per cell of
     // about 4 minimum element sizes (up to 16 x 16), since its light may be even over the whole

@@ -43,7 +43,8 @@ struct HierarchySettings {
     int max_iterations = 1000;       ///< Jacobi sweeps per round
     int max_rounds = 12;             ///< refinement rounds
     float hard_edge_angle = 0.5236f; ///< radians, for the corner colours
-    ElementLimits limits;            ///< cap on patches (leaves are capped by max_elements too)
+    /// Cap on patches (leaves are capped by max_elements too); contact lines are cut.
+    ElementLimits limits = ElementLimits().with_contacts();
     Lights lights;                   ///< point and spot lamps and suns: sources of links
 };
 

@@ -76,8 +76,7 @@ struct ElementLimits {
     bool cut_intersections = true;
     /// With cut_intersections: cut them along contact lines too, where another polygon stands on
     /// them (a box on a floor), so no element straddles the footprint's outline. Off here, on in
-    /// the uniform bake (BakeSettings::limits): the hierarchy's links at the resulting shared
-    /// edges lose light (a Cornell box block face 13% dark), so its patches are left whole.
+    /// the uniform and hierarchical bakes (BakeSettings::limits, HierarchySettings::limits).
     bool cut_contacts = false;
 
     /// These limits with contact cuts on.
