@@ -6,6 +6,7 @@ parses those arguments, installs and enables the add-on from the zip, and runs t
 failing the process (exit code 1 through --python-exit-code) if any fails."""
 
 import argparse
+import contextlib
 import os
 import sys
 import time
@@ -70,6 +71,28 @@ def run(*tests):
             print("PASS %s (%.1f s)" % (test.__name__, time.perf_counter() - start), flush=True)
     if failures:
         raise RuntimeError("failed: " + ", ".join(failures))
+
+
+def corner_positions(mesh):
+    """(loops, 3) float array: the position of each face corner's vertex."""
+    import numpy as np
+    positions = np.empty(len(mesh.vertices) * 3)
+    mesh.vertices.foreach_get("co", positions)
+    loops = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", loops)
+    return positions.reshape(-1, 3)[loops]
+
+
+@contextlib.contextmanager
+def patched_setting(name, value):
+    """The add-on's auto_settings.<name> set to `value` inside the block."""
+    auto_settings = sys.modules[MODULE + ".auto_settings"]
+    kept = getattr(auto_settings, name)
+    setattr(auto_settings, name, value)
+    try:
+        yield
+    finally:
+        setattr(auto_settings, name, kept)
 
 
 def corner_colors(mesh, name):

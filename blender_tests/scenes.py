@@ -218,6 +218,13 @@ def slab_over_floor(gap):
                        [diffuse("White", (0.8, 0.8, 0.8)), emission("Lamp", (1.0, 1.0, 1.0), 10.0)])
 
 
+def under_and_around_slab(corners, gap):
+    """Which of slab_over_floor(gap)'s face corners (positions, (loops, 3)) are on the floor within
+    0.6 m of the slab's centre in x and y, or on the slab's underside: where its contact shadow falls."""
+    on_floor = (corners[:, 2] == 0) & (np.abs(corners[:, 0] - 1) <= 0.6) & (np.abs(corners[:, 1] - 1) <= 0.6)
+    return on_floor | (np.abs(corners[:, 2] - gap) < 1e-6)
+
+
 def _block(xy0, xy1, height, cell):
     """The five visible faces of an axis-aligned block standing on the floor (outward normals)."""
     (x0, y0), (x1, y1) = xy0, xy1

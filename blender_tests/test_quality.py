@@ -2,7 +2,6 @@
 operator and the command line; and the bake's summary (residual, energy balance, error estimate)
 against the furnace's exact answer."""
 
-import contextlib
 import dataclasses
 import math
 import os
@@ -177,7 +176,7 @@ def test_summary_on_the_furnace():
     # A loose tolerance, so that the solve's error is large enough to compare with its bound.
     settings.tolerance = 1e-2
     # Plain Gauss-Seidel, whose residual keeps its sign (below); over-relaxation overshoots.
-    with patched("AUTOMATIC_OVER_RELAXATION", 1.0):
+    with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", 1.0):
         job = job_for(bpy.context.scene)
         radiance = job.solve()["element_radiance"]
     summary = job.write(bpy.context.scene)
@@ -209,17 +208,6 @@ def test_summary_on_the_furnace():
     assert "at most %.2g%% (solve)" % (100 * estimate["solve_bound"]) in report, report
 
 
-@contextlib.contextmanager
-def patched(name, value):
-    """auto_settings.<name> set to `value` inside the block."""
-    kept = getattr(auto_settings, name)
-    setattr(auto_settings, name, value)
-    try:
-        yield
-    finally:
-        setattr(auto_settings, name, kept)
-
-
 def test_over_relaxation_near_rho_one():
     # Draft, as an artist would bake a bright white room: the core's automatic omega against plain
     # Gauss-Seidel (over_relaxation 1), same tolerance, same answer.
@@ -227,7 +215,7 @@ def test_over_relaxation_near_rho_one():
     scenes.clear_scene()
     box = scenes.furnace_box(rho, emitted, cells=4)
     bpy.context.scene.radiosity.quality = "DRAFT"
-    with patched("AUTOMATIC_OVER_RELAXATION", 1.0):
+    with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", 1.0):
         plain = addon.bake(bpy.context.scene)
     plain_colors = harness.corner_colors(box.data, "Radiosity")
     sor = addon.bake(bpy.context.scene)
@@ -260,15 +248,10 @@ def point_to_polygon(points, normal, polygon):
 
 def floor_error(obj, lamp, rho, radiance):
     """Relative RMS of the floor's baked corners against their direct light from the lamp."""
-    mesh = obj.data
-    positions = np.empty(len(mesh.vertices) * 3)
-    mesh.vertices.foreach_get("co", positions)
-    loops = np.empty(len(mesh.loops), dtype=np.int64)
-    mesh.loops.foreach_get("vertex_index", loops)
-    corners = positions.reshape(-1, 3)[loops]
+    corners = harness.corner_positions(obj.data)
     on_floor = corners[:, 2] == 0.0
     exact = rho * radiance * point_to_polygon(corners[on_floor], np.array([0.0, 0.0, 1.0]), lamp)
-    baked = harness.corner_colors(mesh, "Radiosity")[on_floor]
+    baked = harness.corner_colors(obj.data, "Radiosity")[on_floor]
     return math.sqrt(np.mean((baked - exact[:, None]) ** 2)) / math.sqrt(np.mean(exact ** 2))
 
 
@@ -354,14 +337,7 @@ def test_near_field_at_medium_and_high():
     gap = 0.005
     scenes.clear_scene()
     obj = scenes.slab_over_floor(gap)
-    mesh = obj.data
-    positions = np.empty(len(mesh.vertices) * 3)
-    mesh.vertices.foreach_get("co", positions)
-    loops = np.empty(len(mesh.loops), dtype=np.int64)
-    mesh.loops.foreach_get("vertex_index", loops)
-    p = positions.reshape(-1, 3)[loops]
-    around = (((p[:, 2] == 0) & (np.abs(p[:, 0] - 1) <= 0.6) & (np.abs(p[:, 1] - 1) <= 0.6))
-              | (np.abs(p[:, 2] - gap) < 1e-6))
+    around = scenes.under_and_around_slab(harness.corner_positions(obj.data), gap)
     halves = [cycles_corners(obj, 8192, seed)[around] for seed in (1, 2)]
     truth = 0.5 * (halves[0] + halves[1])
 
@@ -377,12 +353,12 @@ def test_near_field_at_medium_and_high():
     assert "Gauss-Seidel" in settings.last_report, settings.last_report
     assert "Hemi-cube resolution %d, near field:" % job_for(bpy.context.scene).choice.resolution \
         in settings.last_accuracy, settings.last_accuracy
-    corrected = error(harness.corner_colors(mesh, "Radiosity")[around])
+    corrected = error(harness.corner_colors(obj.data, "Radiosity")[around])
     without = {name: dataclasses.replace(preset, near_field=False) for name, preset in auto_settings.PRESETS.items()}
-    with patched("PRESETS", without):
+    with harness.patched_setting("PRESETS", without):
         summary = addon.bake(bpy.context.scene)
     assert not summary["near_field"], summary
-    plain = error(harness.corner_colors(mesh, "Radiosity")[around])
+    plain = error(harness.corner_colors(obj.data, "Radiosity")[around])
     print("slab %g m over the floor, Medium: %.2f%% RMS against Cycles around the slab with the near-field "
           "correction, %.2f%% without" % (gap, 100 * corrected, 100 * plain))
     assert corrected < 0.06 and plain > 0.07, (corrected, plain)
@@ -399,7 +375,7 @@ def test_thin_quads_are_cut():
         scenes.grid((0, 0.5, 0), (1, 0, 0), (0, width, 0), 1, 1) + (0,),  # the strip, facing up
     ], [scenes.diffuse("White", (0.8, 0.8, 0.8)), scenes.emission("Light", (1, 1, 1), 1.0)])
     bpy.context.scene.radiosity.quality = "DRAFT"
-    with patched("MAX_ELEMENT_ASPECT", 0.0):
+    with harness.patched_setting("MAX_ELEMENT_ASPECT", 0.0):
         kept = addon.bake(bpy.context.scene)
     cut = addon.bake(bpy.context.scene)
     along = math.ceil(1 / cut["element_size"])  # the strip's elements along it, before the cut

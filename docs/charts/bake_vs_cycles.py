@@ -28,7 +28,6 @@ seconds of this process (all threads: the machine this runs on is shared, and CP
 count other jobs) and as wall-clock seconds. Writes one CSV row per bake."""
 
 import argparse
-import contextlib
 import csv
 import dataclasses
 import math
@@ -134,18 +133,6 @@ def cycles_bake(obj, samples, seed):
     return corner_colors(obj.data, name), seconds
 
 
-@contextlib.contextmanager
-def patched(name, value):
-    """The add-on's auto_settings.<name> set to `value` inside the block."""
-    auto_settings = sys.modules["bake_radiosity.auto_settings"]
-    kept = getattr(auto_settings, name)
-    setattr(auto_settings, name, value)
-    try:
-        yield
-    finally:
-        setattr(auto_settings, name, kept)
-
-
 def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     """(corner colours, Stopwatch, summary) of a whole add-on bake; method GAUSS_SEIDEL_PLAIN is
     Gauss-Seidel without over-relaxation; near_field True or False overrides the presets' own."""
@@ -155,7 +142,7 @@ def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     omega = 1.0 if method == "GAUSS_SEIDEL_PLAIN" else auto_settings.AUTOMATIC_OVER_RELAXATION
     presets = auto_settings.PRESETS if near_field is None else {
         name: dataclasses.replace(preset, near_field=near_field) for name, preset in auto_settings.PRESETS.items()}
-    with patched("AUTOMATIC_OVER_RELAXATION", omega), patched("PRESETS", presets), Stopwatch() as seconds:
+    with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", omega), harness.patched_setting("PRESETS", presets), Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", **settings)
     return corner_colors(obj.data, "Radiosity"), seconds, summary
 
@@ -244,14 +231,7 @@ def slab_rows(addon):
     for gap in SLAB_GAPS:
         scenes.clear_scene()
         slab = scenes.slab_over_floor(gap)
-        mesh = slab.data
-        positions = np.empty(len(mesh.vertices) * 3)
-        mesh.vertices.foreach_get("co", positions)
-        loops = np.empty(len(mesh.loops), dtype=np.int64)
-        mesh.loops.foreach_get("vertex_index", loops)
-        p = positions.reshape(-1, 3)[loops]
-        around = (((p[:, 2] == 0) & (np.abs(p[:, 0] - 1) <= 0.6) & (np.abs(p[:, 1] - 1) <= 0.6))
-                  | (np.abs(p[:, 2] - gap) < 1e-6))
+        around = scenes.under_and_around_slab(harness.corner_positions(slab.data), gap)
         halves = [cycles_bake(slab, SLAB_CYCLES_SAMPLES, seed)[0][around] for seed in (1, 2)]
         reference = 0.5 * (halves[0] + halves[1])
         noise = relative_rms(halves[0], halves[1]) / 2

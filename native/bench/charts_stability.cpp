@@ -28,15 +28,7 @@ double worst_element_error(const test::SceneArrays& scene, float max_aspect) {
     s.resolution = 256;
     s.solve.tolerance = 1e-8;
     s.limits.max_aspect = max_aspect;
-    const BakeResult r = bake(scene.input(), s);
-    const Elements& e = r.build.elements;
-    double worst = 0.0, peak = 0.0;
-    for (std::size_t i = 1; i < e.size(); ++i) {
-        const double truth = 0.5 * area_flux(e, int32_t(i), 0, 8) / e.area[i];
-        peak = std::max(peak, truth);
-        worst = std::max(worst, std::abs(r.solve.radiance[i].g - truth));
-    }
-    return worst / peak;
+    return test::worst_direct_light_error(bake(scene.input(), s), 0.5);
 }
 
 /// A 20 cm emitter 30 cm over the floor z = 0, then the floor polygons.

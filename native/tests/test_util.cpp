@@ -1,5 +1,10 @@
 #include "test_util.h"
 
+#include "radiosity/near_field.h"
+
+#include <algorithm>
+#include <cmath>
+
 namespace radiosity::test {
 
 int32_t SceneArrays::add_polygon(const std::vector<Vec3>& corners, const Rgb& rho, const Rgb& emitted,
@@ -96,6 +101,17 @@ SceneArrays cornell_box() {
     add_block(s, {0.15f, 0.55f, 0.0f}, {0.45f, 0.85f, 0.6f}, white);
     add_block(s, {0.55f, 0.15f, 0.0f}, {0.85f, 0.45f, 0.3f}, white);
     return s;
+}
+
+double worst_direct_light_error(const BakeResult& r, double rho) {
+    const Elements& e = r.build.elements;
+    double worst = 0.0, peak = 0.0;
+    for (std::size_t i = 1; i < e.size(); ++i) {
+        const double truth = rho * area_flux(e, int32_t(i), 0, 8) / e.area[i];
+        peak = std::max(peak, truth);
+        worst = std::max(worst, std::abs(r.solve.radiance[i].g - truth));
+    }
+    return worst / peak;
 }
 
 }  // namespace radiosity::test

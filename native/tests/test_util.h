@@ -2,6 +2,7 @@
 /// @brief Small scenes for the tests, built as the add-on would build them: flat arrays.
 #pragma once
 
+#include "radiosity/bake.h"
 #include "radiosity/scene.h"
 
 #include <vector>
@@ -37,5 +38,10 @@ SceneArrays closed_box(const Vec3& size, const Rgb& rho, const Rgb& emitted);
 /// The Cornell box as a closed 1 m cube (front wall closed too, so no light escapes):
 /// red left wall, green right wall, white elsewhere, a square ceiling light and two blocks.
 SceneArrays cornell_box();
+
+/// The worst element's error against its exact direct light from emitter polygon 0 (radiance 1,
+/// green channel): elements 1.. take rho * area_flux(e, i, 0) / A_i. As a share of the largest
+/// exact value.
+double worst_direct_light_error(const BakeResult& r, double rho);
 
 }  // namespace radiosity::test
