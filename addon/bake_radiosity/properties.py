@@ -33,8 +33,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
     memory_budget: IntProperty(
         name="Memory Budget",
         description="Megabytes the table of form factors may take. Automatic method stores the table "
-                    "(Gauss-Seidel) when its worst case fits, otherwise it bakes hierarchically, with "
-                    "memory and time nearly in proportion to the scene",
+                    "(Gauss-Seidel) when its worst case fits, otherwise it bakes hierarchically, whose "
+                    "memory grows more slowly with the scene than the table's",
         default=2048, min=1, soft_max=65536, subtype="UNSIGNED",
     )
     method: EnumProperty(
@@ -53,8 +53,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
              "Like Gauss-Seidel but every element is updated from the previous sweep. Slower; for comparison"),
             ("HIERARCHICAL", "Hierarchical",
              "Split faces only where the light changes (shadow edges, corners), down to the element size, "
-             "and let far groups of faces exchange light as one. Time and memory grow nearly in proportion "
-             "to the scene: for large scenes. Not for scenes with fog or smoke"),
+             "and let far groups of faces exchange light as one. Memory grows more slowly with the scene "
+             "than the stored table's: for large scenes. Not for scenes with fog or smoke"),
         ),
         default="AUTO",
         update=_switch_to_custom,
