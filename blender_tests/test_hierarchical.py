@@ -115,6 +115,23 @@ def test_batch_command_bakes_hierarchically():
     assert "hierarchical" in run.stdout and "leaves" in run.stdout, run.stdout
 
 
+def test_batch_command_keeps_the_hierarchy_within_the_memory_budget():
+    # Uncapped, the Cornell box at 2 cm elements and refinement 0.01 takes tens of MB of elements
+    # and links; with a 1 MB budget refinement stops there, the bake still finishes and says why.
+    scenes.clear_scene()
+    scenes.cornell_box("MESH")
+    path = os.path.join(args.work, "hierarchical_budget.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
+                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path,
+                          "--method", "HIERARCHICAL", "--element-size", "0.02", "--refine-tolerance", "0.01",
+                          "--memory-budget", "1"],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert "Refinement stopped at the Memory Budget (1 MB of elements and links)" in run.stdout, run.stdout
+    assert "hierarchical" in run.stdout and "leaves" in run.stdout, run.stdout
+
+
 def test_fog_refuses_the_method_and_changes_nothing():
     floor = floor_under_lamp()
     fog = bpy.data.materials.new("Fog")
@@ -144,4 +161,5 @@ def test_fog_refuses_the_method_and_changes_nothing():
 
 
 harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
-            test_batch_command_bakes_hierarchically, test_fog_refuses_the_method_and_changes_nothing)
+            test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
+            test_fog_refuses_the_method_and_changes_nothing)

@@ -83,6 +83,10 @@ class BakeJob:
         if hierarchy and hierarchy["leaf_cap_reached"]:
             self.warnings.append("Refinement stopped at the element cap (%d elements) before the light was followed "
                                  "everywhere: raise Element Size or Refinement" % hierarchy["leaves"])
+        if hierarchy and hierarchy["memory_cap_reached"]:
+            self.warnings.append("Refinement stopped at the Memory Budget (%.0f MB of elements and links) before the "
+                                 "light was followed everywhere: raise the Memory Budget, Element Size or Refinement"
+                                 % (hierarchy["bytes"] / auto_settings.MEBIBYTE))
         return self.result
 
     def element_layout(self):
@@ -100,7 +104,7 @@ class BakeJob:
                 e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
                 element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
                 max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-                lights=e.lights, progress=progress)
+                lights=e.lights, max_bytes=c.budget_bytes, progress=progress)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
             over_relaxation = {"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION} if method == "gauss_seidel" else {}

@@ -34,7 +34,7 @@ class RadiositySettings(bpy.types.PropertyGroup):
         name="Memory Budget",
         description="Megabytes the table of form factors may take. Automatic method stores the table "
                     "(Gauss-Seidel) when its worst case fits, otherwise it bakes hierarchically, whose "
-                    "memory grows more slowly with the scene than the table's",
+                    "elements and links stay within it too (refinement stops there)",
         default=2048, min=1, soft_max=65536, subtype="UNSIGNED",
     )
     method: EnumProperty(

@@ -25,6 +25,7 @@ py::dict hierarchy_counts(const HierarchyStats& stats) {
     out["bytes"] = stats.bytes;
     out["rounds"] = stats.rounds;
     out["leaf_cap_reached"] = stats.leaf_cap_reached;
+    out["memory_cap_reached"] = stats.memory_cap_reached;
     return out;
 }
 
@@ -33,7 +34,7 @@ py::dict bake_hierarchical_arrays(const Array<float>& positions, const Array<int
                                   const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                                   float element_size, double refine_tolerance, double tolerance, int max_iterations,
                                   float hard_edge_angle, const py::list& lights, std::size_t max_elements,
-                                  const py::object& progress) {
+                                  std::size_t max_bytes, const py::object& progress) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
     HierarchySettings settings;
     settings.min_element_size = element_size;
@@ -43,6 +44,7 @@ py::dict bake_hierarchical_arrays(const Array<float>& positions, const Array<int
     settings.hard_edge_angle = hard_edge_angle;
     settings.lights = parse_lights(lights);
     settings.limits.max_elements = max_elements;
+    settings.max_bytes = max_bytes;
     ProgressReporter reporter(progress);
     HierarchyResult result;
     try {
@@ -83,12 +85,12 @@ void bind_hierarchy(py::module_& m) {
     m.def("bake_hierarchical", &bake_hierarchical_arrays,
           "Bakes hierarchically (elements refined where the light needs them, clusters linked far off). "
           "element_size is the finest element edge in metres; refine_tolerance the error allowed per link "
-          "as a share of the scene's mean reflected radiance.",
+          "as a share of the scene's mean reflected radiance; max_bytes caps its nodes and links (0: no cap).",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = HierarchySettings().min_element_size,
           "refine_tolerance"_a = HierarchySettings().refine_tolerance, "tolerance"_a = 1e-4,
           "max_iterations"_a = 1000, "hard_edge_angle"_a = 0.5235988f, "lights"_a = py::list(),
-          "max_elements"_a = ElementLimits().max_elements, "progress"_a = py::none());
+          "max_elements"_a = ElementLimits().max_elements, "max_bytes"_a = 0, "progress"_a = py::none());
 }
 
 }  // namespace radiosity::python

@@ -220,6 +220,21 @@ TEST(Hierarchy, LeafCapStopsRefinementWithoutFailing) {
     for (const Rgb& L : r.output_radiance) EXPECT_TRUE(std::isfinite(L.r));
 }
 
+TEST(Hierarchy, MemoryCapStopsRefinementWithoutFailing) {
+    // The Cornell box at 3 cm and refinement 0.01 takes about 100 MB of nodes and links; capped at
+    // 4 MB, pairs stop splitting there and the bake still finishes with a finite answer.
+    const auto cornell = test::cornell_box();
+    HierarchySettings s = settings(0.03f, 0.01);
+    s.max_bytes = std::size_t(4) << 20;
+    const HierarchyResult r = bake_hierarchical(cornell.input(), s);
+    EXPECT_TRUE(r.stats.memory_cap_reached);
+    EXPECT_LE(r.stats.bytes, s.max_bytes + s.max_bytes / 100);  // splits under way when it was reached
+    EXPECT_GT(r.stats.bytes, s.max_bytes / 2);
+    for (const Rgb& L : r.output_radiance) EXPECT_TRUE(std::isfinite(L.r) && L.r >= 0.0);
+    const auto means = polygon_means(r.output, r.output_radiance);
+    EXPECT_GT(means.at(0), 0.0);  // the floor is lit
+}
+
 TEST(Hierarchy, CancelStopsTheBake) {
     const auto cornell = test::cornell_box();
     std::size_t calls = 0;

@@ -52,7 +52,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     stage(3);
     result.seconds_elements = seconds_since(start);
 
-    hr::Refiner refiner(tree, visibility);
+    hr::Refiner refiner(tree, visibility, settings.max_bytes);
     hr::pull(tree);
     start = Clock::now();
     refiner.link_initial(progress);
@@ -70,7 +70,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
         result.residual = sweep.residual;
         result.converged = sweep.converged;
         ++round;
-        if (round >= settings.max_rounds) break;
+        if (round >= settings.max_rounds || refiner.memory_cap_reached()) break;  // capped: nothing may split
         const double scale = hr::reference_radiance(tree);
         if (!(scale > 0.0)) break;  // nothing lit: nothing to refine for
         start = Clock::now();
@@ -95,7 +95,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     stats.links = refiner.links();
     stats.rays = refiner.rays();
     stats.leaf_cap_reached = tree.cap_reached();
-    stats.bytes = stats.nodes * sizeof(hr::Node) + stats.links * sizeof(hr::Link) + tree.vertices.size() * sizeof(Vec3);
+    stats.memory_cap_reached = refiner.memory_cap_reached();
+    stats.bytes = refiner.bytes();
     return result;
 }
 

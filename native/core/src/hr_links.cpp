@@ -361,6 +361,7 @@ void Refiner::link_depth_first(const Pending& pair, double threshold, Output& ou
 
 void Refiner::link(const Pending& pair, double threshold, Output& out, std::vector<Pending>& stack, std::size_t& rays) {
     const auto [receiver, source, split] = pair;
+    --links_;  // the pair held a place in links_ while it waited
     const Estimate e = estimate(receiver, source);
     rays += e.rays;
     if (!e.useful) return;
@@ -370,7 +371,7 @@ void Refiner::link(const Pending& pair, double threshold, Output& out, std::vect
     // solve, when every source but the lamps and emitters is still dark).
     const bool too_near = is_must_split(e.link);
     const double link_error = too_near ? 0.0 : error(r, e.link, split_at_start(receiver));
-    if (split || too_near || link_error > threshold) {
+    if ((split || too_near || link_error > threshold) && within_memory()) {
         // Split the end the error comes from (an element's factor towards a polygon is exact over
         // the source, so only the receiver's side errs); the other end only if that one cannot.
         const bool r_splits = r.kind == Kind::Cluster || tree_.can_split(r);
@@ -379,21 +380,35 @@ void Refiner::link(const Pending& pair, double threshold, Output& out, std::vect
         const bool source_first = source_side || !r_splits;
         for (const bool split_source : {source_first, !source_first}) {
             if (split_source && s_splits && (s.kind == Kind::Cluster || tree_.subdivide(source))) {
+                links_ += s.child_count;
                 for (int k = s.child_count; k-- > 0;) stack.push_back({receiver, child(s, k), false});
                 return;
             }
             if (!split_source && r_splits && (r.kind == Kind::Cluster || tree_.subdivide(receiver))) {
+                links_ += r.child_count;
                 for (int k = r.child_count; k-- > 0;) stack.push_back({child(r, k), source, false});
                 return;
             }
         }
     }
     out.emplace_back(receiver, e.link);
+    ++links_;
+}
+
+std::size_t Refiner::bytes() const {
+    return tree_.nodes.size() * sizeof(Node) + links_ * sizeof(Link) + tree_.vertices.size() * sizeof(Vec3);
+}
+
+bool Refiner::within_memory() {
+    if (max_bytes_ == 0 || bytes() < max_bytes_) return true;
+    memory_cap_reached_ = true;
+    return false;
 }
 
 void Refiner::link_all(std::vector<Pending> pending, double threshold, const ProgressFn& progress) {
     tbb::enumerable_thread_specific<Output> outputs;
     tbb::enumerable_thread_specific<std::size_t> rays(0);
+    links_ += pending.size();  // each waiting pair may become a link: the memory cap counts it
     std::size_t done = 0;  // pairs of the levels before: the bar counts pairs over all levels
     ProgressFn level_progress;
     if (progress)
@@ -479,6 +494,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
                 continue;
             }
             pending.local().push_back({receiver, r.links[k].source, true});
+            --links_;
         }
         r.links = std::move(kept);  // only this task touches r's own list; new links wait below
         return true;
@@ -487,12 +503,6 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
     for (const auto& part : pending) all.insert(all.end(), part.begin(), part.end());
     const std::size_t count = all.size();
     link_all(std::move(all), threshold, progress);
-    return count;
-}
-
-std::size_t Refiner::links() const {
-    std::size_t count = 0;
-    for (const Node& n : tree_.nodes) count += n.links.size();
     return count;
 }
 

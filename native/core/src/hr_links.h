@@ -6,6 +6,8 @@
 #include "hr_tree.h"
 #include "hr_visibility.h"
 
+#include <atomic>
+
 namespace radiosity::hr {
 
 /// A source's intensity towards `u` (unit, leaving the source): clusters and elements by their
@@ -14,7 +16,9 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u);
 
 class Refiner {
 public:
-    Refiner(Tree& tree, const Visibility& visibility) : tree_(tree), visibility_(visibility) {}
+    /// `max_bytes`: the nodes and links may take this many bytes; pairs stop splitting beyond (0: no cap).
+    Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes = 0)
+        : tree_(tree), visibility_(visibility), max_bytes_(max_bytes) {}
 
     /// The first links: every pair of sibling subtrees and every lamp with the root, at the
     /// coarsest level (sources are dark before the first solve, so nothing asks for more).
@@ -24,7 +28,11 @@ public:
     std::size_t refine(double threshold, const ProgressFn& progress);
 
     std::size_t rays() const { return rays_; }
-    std::size_t links() const;
+    std::size_t links() const { return links_; }
+    /// Bytes of nodes, links and vertices now (HierarchyStats::bytes).
+    std::size_t bytes() const;
+    /// Whether a pair stayed whole because the nodes and links reached `max_bytes`.
+    bool memory_cap_reached() const { return memory_cap_reached_; }
 
 private:
     struct Estimate {
@@ -75,8 +83,14 @@ private:
 
     Tree& tree_;
     const Visibility& visibility_;
+    /// Whether splitting may go on: false once bytes() reaches `max_bytes_` (and marks the cap).
+    bool within_memory();
+
     std::vector<uint8_t> split_;
     std::size_t rays_ = 0;
+    std::size_t max_bytes_ = 0;
+    std::atomic<std::size_t> links_{0};  ///< links made, plus pairs waiting (each may become one)
+    std::atomic<bool> memory_cap_reached_{false};
 };
 
 }  // namespace radiosity::hr

@@ -22,7 +22,8 @@
 ///
 /// Each round solves the linked system by Jacobi sweeps with push-pull (irradiance pushed down
 /// to the leaves, radiance pulled up as area means), then refines every link whose error is
-/// now too large; rounds stop when no link changed and the solve has converged.
+/// now too large; rounds stop when no link changed and the solve has converged, or when the
+/// nodes and links reached `max_bytes`.
 #pragma once
 
 #include "radiosity/interpolation.h"
@@ -45,6 +46,9 @@ struct HierarchySettings {
     float hard_edge_angle = 0.5236f; ///< radians, for the corner colours
     /// Cap on patches (leaves are capped by max_elements too); contact lines are cut.
     ElementLimits limits = ElementLimits().with_contacts();
+    /// Cap on the bytes of nodes and links (HierarchyStats::bytes; the process peaks at about
+    /// twice that): pairs stop splitting once it is reached. 0: no cap.
+    std::size_t max_bytes = 0;
     Lights lights;                   ///< point and spot lamps and suns: sources of links
 };
 
@@ -53,6 +57,7 @@ struct HierarchyStats {
     std::size_t bytes = 0;           ///< nodes and links held at the end (the bulk of the memory)
     int rounds = 0, iterations = 0;
     bool leaf_cap_reached = false;   ///< refinement stopped early at ElementLimits::max_elements
+    bool memory_cap_reached = false; ///< refinement stopped early at HierarchySettings::max_bytes
 };
 
 struct HierarchyResult {
