@@ -4,6 +4,7 @@
 /// (ElementLimits::cut_contacts, on in the uniform bake).
 
 #include "radiosity/bake.h"
+#include "radiosity/hierarchy.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -47,14 +48,8 @@ struct ContactMeasure {
 bool inside(const Vec3& v, float slack) { return v.x > kLo + slack && v.x < kHi - slack && v.y > kLo + slack && v.y < kHi - slack; }
 bool outside(const Vec3& v, float slack) { return v.x < kLo - slack || v.x > kHi + slack || v.y < kLo - slack || v.y > kHi + slack; }
 
-ContactMeasure measure(float element_size, bool cut) {
-    BakeSettings s;
-    s.element_size = element_size;
-    s.resolution = 64;
-    s.limits.cut_intersections = cut;
-    s.lights.suns.push_back({Vec3(0, 0, -1), Rgb(kSun)});
-    const BakeResult r = bake(box_on_floor().input(), s);
-    const Elements& e = r.build.elements;
+/// The floor's elements (polygon 0) of a bake of box_on_floor: its mesh, radiances and corner colours.
+ContactMeasure measure_floor(const Elements& e, const std::vector<Rgb>& radiance, const std::vector<Rgb>& corners) {
     ContactMeasure m;
     const float slack = 1e-5f;
     for (std::size_t i = 0; i < e.size(); ++i) {
@@ -67,20 +62,47 @@ ContactMeasure measure(float element_size, bool cut) {
             any_out = any_out || outside(v, slack);
             touches = touches || !outside(v, slack);
         }
-        const double radiance = r.solve.radiance[i].g;
+        const double L = radiance[i].g;
         m.straddling += any_in && any_out;
-        if (any_in) m.footprint = std::max(m.footprint, radiance / kLit);
-        if (any_out && touches) m.lit_ring = std::max(m.lit_ring, std::abs(radiance - kLit) / kLit);
+        if (any_in) m.footprint = std::max(m.footprint, L / kLit);
+        if (any_out && touches) m.lit_ring = std::max(m.lit_ring, std::abs(L - kLit) / kLit);
         for (int k = 0; k < n; ++k) {
             const Vec3& v = e.vertices[e.corners[i][k]];
-            const double colour = r.colors.element_corner[4 * i + k].g;
+            const double colour = corners[4 * i + k].g;
             if (any_in && !outside(v, slack)) m.dark_corner = std::max(m.dark_corner, colour / kLit);
             if (any_out && !inside(v, slack)) m.lit_corner = std::max(m.lit_corner, std::abs(colour - kLit) / kLit);
         }
     }
-    std::printf("box on floor, %.2f m elements, cut %s: %d straddling; lit ring error %.4f, footprint %.4f of the lit "
-                "floor; corners on the outline: lit side error %.4f, dark side %.4f\n",
-                element_size, cut ? "on " : "off", m.straddling, m.lit_ring, m.footprint, m.lit_corner, m.dark_corner);
+    return m;
+}
+
+void print(const char* bake, float element_size, bool cut, const ContactMeasure& m) {
+    std::printf("box on floor, %s, %.2f m elements, cut %s: %d straddling; lit ring error %.4f, footprint %.4f of the "
+                "lit floor; corners on the outline: lit side error %.4f, dark side %.4f\n",
+                bake, element_size, cut ? "on " : "off", m.straddling, m.lit_ring, m.footprint, m.lit_corner,
+                m.dark_corner);
+}
+
+ContactMeasure measure(float element_size, bool cut) {
+    BakeSettings s;
+    s.element_size = element_size;
+    s.resolution = 64;
+    s.limits.cut_intersections = cut;
+    s.lights.suns.push_back({Vec3(0, 0, -1), Rgb(kSun)});
+    const BakeResult r = bake(box_on_floor().input(), s);
+    const ContactMeasure m = measure_floor(r.build.elements, r.solve.radiance, r.colors.element_corner);
+    print("uniform", element_size, cut, m);
+    return m;
+}
+
+/// The hierarchical bake (contacts always cut) down to `min_element_size`.
+ContactMeasure measure_hierarchical(float min_element_size) {
+    HierarchySettings s;
+    s.min_element_size = min_element_size;
+    s.lights.suns.push_back({Vec3(0, 0, -1), Rgb(kSun)});
+    const HierarchyResult r = bake_hierarchical(box_on_floor().input(), s);
+    const ContactMeasure m = measure_floor(r.output, r.output_radiance, r.colors.element_corner);
+    print("hierarchical", min_element_size, true, m);
     return m;
 }
 
@@ -106,6 +128,19 @@ TEST(Contacts, CutAlongTheOutlineKeepsTheFootprintDarkAndTheFloorLit) {
         EXPECT_LT(m.footprint, 1e-5);
         EXPECT_LT(m.lit_ring, 1e-5);
         // Corner colours are not blended across the outline: each side is extrapolated from its own.
+        EXPECT_LT(m.dark_corner, 1e-5);
+        EXPECT_LT(m.lit_corner, 1e-5);
+    }
+}
+
+TEST(Contacts, HierarchyKeepsTheFootprintDarkAndTheFloorLit) {
+    // Its leaves keep their patch's cut edges, so interpolation does not blend the lit floor with
+    // the footprint (before: corners on the lit side 0.27 off).
+    for (float size : {0.3f, 0.12f}) {
+        const ContactMeasure m = measure_hierarchical(size);
+        EXPECT_EQ(m.straddling, 0);
+        EXPECT_LT(m.footprint, 1e-5);
+        EXPECT_LT(m.lit_ring, 1e-5);
         EXPECT_LT(m.dark_corner, 1e-5);
         EXPECT_LT(m.lit_corner, 1e-5);
     }

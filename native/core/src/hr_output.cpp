@@ -29,6 +29,7 @@ public:
         const Node& n = tree_.nodes[id];
         emission_ = n.emission + n.reflectance * lamp_light_[id];
         polygon_ = build_.elements.polygon[n.patch];
+        take_cuts(n.patch);
         ++mesh_.leaves;
         const int count = n.is_triangle() ? 3 : 4;
         boundary_.clear();
@@ -59,9 +60,44 @@ public:
     }
 
 private:
+    /// The edges of `patch` that lie on an intersection or contact line (Elements::cut_edges).
+    void take_cuts(int32_t patch) {
+        cuts_.clear();
+        const Elements& patches = build_.elements;
+        if (patches.cut_edges.empty() || patches.cut_edges[patch] == 0) return;
+        const int count = patches.is_triangle(patch) ? 3 : 4;
+        for (int k = 0; k < count; ++k)
+            if ((patches.cut_edges[patch] >> k) & 1u)
+                cuts_.push_back({patches.vertices[patches.corners[patch][k]],
+                                 patches.vertices[patches.corners[patch][(k + 1) % count]]});
+    }
+
+    /// Whether the output edge a - b lies along one of the current patch's cut edges.
+    bool on_cut(const Vec3& a, const Vec3& b) const {
+        for (const auto& [p, q] : cuts_) {
+            const glm::dvec3 d(q - p);
+            const double length2 = glm::dot(d, d);
+            auto on_line = [&](const Vec3& x) {
+                const glm::dvec3 v(x - p);
+                const double t = glm::dot(v, d) / length2;
+                return t > -1e-5 && t < 1.0 + 1e-5 && glm::dot(v - t * d, v - t * d) <= 1e-10 * length2;
+            };
+            if (length2 > 0.0 && on_line(a) && on_line(b)) return true;
+        }
+        return false;
+    }
+
     void add(const Node& n, const std::array<int32_t, 4>& corners) {
         Elements& out = mesh_.elements;
         const int count = corners[3] < 0 ? 3 : 4;
+        // Leaves keep their patch's cut edges: corner colours must not blend across a contact
+        // line (lit floor beside the dark footprint of a block standing on it).
+        if (!build_.elements.cut_edges.empty()) {
+            uint8_t bits = 0;
+            for (int k = 0; k < count; ++k)
+                if (on_cut(out.vertices[corners[k]], out.vertices[corners[(k + 1) % count]])) bits |= uint8_t(1u << k);
+            out.cut_edges.push_back(bits);
+        }
         Vec3 centre(0.0f);
         glm::dvec3 twice(0.0);
         for (int k = 0; k < count; ++k) {
@@ -89,6 +125,7 @@ private:
     int32_t polygon_ = -1;
     std::unordered_map<uint64_t, int32_t> local_;
     std::vector<int32_t> boundary_;
+    std::vector<std::pair<Vec3, Vec3>> cuts_;
 };
 
 void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
