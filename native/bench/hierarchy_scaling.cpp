@@ -8,7 +8,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <glm/geometric.hpp>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -40,9 +43,25 @@ struct ProgressGaps {
     }
 };
 
+/// Side of the cube with the scene's surface area, as the add-on measures a scene (scene_size).
+double scene_side(const test::SceneArrays& a) {
+    auto vertex = [&](int32_t c) {
+        const float* p = &a.positions[3 * std::size_t(a.corner_vertices[c])];
+        return glm::dvec3(p[0], p[1], p[2]);
+    };
+    double area = 0.0;
+    for (std::size_t f = 0; f + 1 < a.face_offsets.size(); ++f)
+        for (int32_t k = a.face_offsets[f] + 1; k + 1 < a.face_offsets[f + 1]; ++k)
+            area += 0.5 * glm::length(glm::cross(vertex(k) - vertex(a.face_offsets[f]), vertex(k + 1) - vertex(a.face_offsets[f])));
+    return std::sqrt(area / 6.0);
+}
+
+/// What the add-on's Medium preset asks for: elements of the scene's side / 32, refinement 0.02.
+/// The leaves' size follows the scene's extent, not its triangle count: more triangles make
+/// more, smaller patches, not finer light on the walls.
 HierarchySettings scaling_settings(const LitScene& scene) {
     HierarchySettings s;
-    s.min_element_size = scene.triangle_edge;  // leaves about the size of the objects' triangles
+    s.min_element_size = float(scene_side(scene.arrays) / 32.0);
     s.lights = scene.lights;
     return s;
 }
@@ -107,10 +126,11 @@ int bake_one(std::size_t triangles, double cancel_after) {
     std::size_t triangle_count = 0;
     for (std::size_t f = 0; f < scene.arrays.material.size(); ++f)
         triangle_count += scene.arrays.face_offsets[f + 1] - scene.arrays.face_offsets[f] == 3;
-    std::printf("triangles=%zu triangle_edge=%.5f seconds_scene=%.3f ", triangle_count, scene.triangle_edge,
-                seconds_scene);
+    const HierarchySettings settings = scaling_settings(scene);
+    std::printf("triangles=%zu triangle_edge=%.5f min_element_size=%.4f seconds_scene=%.3f ", triangle_count,
+                scene.triangle_edge, settings.min_element_size, seconds_scene);
     try {
-        const HierarchyResult r = bake_hierarchical(scene.arrays.input(), scaling_settings(scene), progress);
+        const HierarchyResult r = bake_hierarchical(scene.arrays.input(), settings, progress);
         const double total = seconds_since(start);
         gaps.mark("end");
         const HierarchyStats& s = r.stats;
@@ -136,7 +156,7 @@ void scaling(const std::string& csv_path, const std::vector<std::size_t>& counts
              double cancel_after) {
     std::ofstream csv(csv_path);
     const std::vector<std::string> columns = {
-        "triangles", "triangle_edge", "patches", "clusters", "leaves", "nodes", "links", "rays", "bytes",
+        "triangles", "triangle_edge", "min_element_size", "patches", "clusters", "leaves", "nodes", "links", "rays", "bytes",
         "rounds", "iterations", "cap", "converged", "output", "seconds", "seconds_elements", "seconds_links",
         "seconds_solve", "seconds_interpolate", "progress_calls", "longest_gap", "longest_gap_phase"};
     for (const std::string& c : columns) csv << c << ",";
