@@ -159,7 +159,7 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
             materials.append(emission("Light", (1.0, 1.0, 1.0), radiance))
             pieces.append((ceiling_vertices, ceiling_quads[opening], 3))
     for corner0, corner1, height in blocks:
-        pieces += _block(corner0, corner1, height, d)
+        pieces += block(corner0, corner1, height, d)
     box = mesh_object("Cornell Box", pieces, materials)
 
     opening_side = (hi - lo) * d
@@ -225,7 +225,7 @@ def under_and_around_slab(corners, gap):
     return on_floor | (np.abs(corners[:, 2] - gap) < 1e-6)
 
 
-def _block(xy0, xy1, height, cell):
+def block(xy0, xy1, height, cell):
     """The five visible faces of an axis-aligned block standing on the floor (outward normals)."""
     (x0, y0), (x1, y1) = xy0, xy1
     nx, ny, nz = (max(1, round(extent / cell)) for extent in (x1 - x0, y1 - y0, height))

@@ -1,7 +1,8 @@
 """The hierarchical method through the artist's paths (the operator with the panel's settings, the
 batch command): a lamp close over a floor refines elements only near it and near the shadow,
 the baked copies have no T-vertex cracks and no colour seams, and the light matches the inverse
-square law. Scenes with fog refuse the method with a clear message and change nothing."""
+square law; a block standing on the floor keeps a dark footprint and a lit floor around it. Scenes
+with fog refuse the method with a clear message and change nothing."""
 
 import math
 import os
@@ -132,6 +133,39 @@ def test_batch_command_keeps_the_hierarchy_within_the_memory_budget():
     assert "hierarchical" in run.stdout and "leaves" in run.stdout, run.stdout
 
 
+def test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit():
+    # A black box standing on a floor under a sun straight down: the floor is exactly rho E / pi
+    # outside the footprint and 0 inside. The copy's corners must not blend the two along the
+    # outline (before: the footprint's corners at 0.84 of the lit floor, the lit ones 21% dark).
+    scenes.clear_scene()
+    floor = scenes.mesh_object("Floor", [scenes.grid((-1, -1, 0), (2, 0, 0), (0, 2, 0), 1, 1) + (0,)],
+                               [scenes.diffuse("Floor", (RHO, RHO, RHO))])
+    low, high = 0.13, 0.53
+    scenes.mesh_object("Box", scenes.block((low, low), (high, high), 0.4, 0.4),
+                       [scenes.diffuse("Box", (0.0, 0.0, 0.0))])
+    sun = bpy.data.lights.new("Sun", "SUN")
+    sun.energy, sun.angle = 3.0, 0.0
+    bpy.context.scene.collection.objects.link(bpy.data.objects.new("Sun", sun))  # unrotated: straight down
+    settings = bpy.context.scene.radiosity
+    settings.quality = "CUSTOM"
+    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.12, 0.02
+    settings.target = "COPIES"
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+
+    mesh = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name).data
+    corners = harness.corner_positions(mesh)
+    colors = harness.corner_colors(mesh, "Radiosity")
+    loop_face = np.repeat(np.arange(len(mesh.polygons)), [p.loop_total for p in mesh.polygons])
+    centres = np.array([p.center[:] for p in mesh.polygons])[loop_face]
+    in_footprint = (np.abs(centres[:, :2] - (low + high) / 2) < (high - low) / 2).all(axis=1)
+    near_outline = (np.abs(corners[:, :2] - (low + high) / 2) <= (high - low) / 2 + 1e-6).all(axis=1)
+    lit = RHO * 3.0 / math.pi
+    dark_side, lit_side = colors[in_footprint].max(), np.abs(colors[~in_footprint & near_outline] - lit).max()
+    print("corners on the box's outline: dark side %.2e, lit side %.2e of rho E / pi" % (dark_side / lit, lit_side / lit))
+    assert (~in_footprint & near_outline).sum() > 0 and in_footprint.sum() > 0
+    assert dark_side < 1e-4 * lit and lit_side < 1e-4 * lit, (dark_side / lit, lit_side / lit)
+
+
 def test_fog_refuses_the_method_and_changes_nothing():
     floor = floor_under_lamp()
     fog = bpy.data.materials.new("Fog")
@@ -162,4 +196,5 @@ def test_fog_refuses_the_method_and_changes_nothing():
 
 harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
             test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
+            test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit,
             test_fog_refuses_the_method_and_changes_nothing)
