@@ -428,8 +428,18 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
         pending.clear();
         for (const auto& level : next) pending.insert(pending.end(), level.begin(), level.end());
     }
-    for (auto& output : outputs)
+    // Each receiver's list grows once, to its exact size (push_back's doubling would leave up to
+    // half of the links' memory, the bulk of the bake's, unused), and each thread's output is
+    // freed as soon as it is placed.
+    std::vector<uint32_t> added(tree_.nodes.size(), 0);
+    for (const auto& output : outputs)
+        for (const auto& [receiver, l] : output) ++added[receiver];
+    for (std::size_t n = 0; n < added.size(); ++n)
+        if (added[n]) tree_.nodes[n].links.reserve(tree_.nodes[n].links.size() + added[n]);
+    for (auto& output : outputs) {
         for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
+        Output().swap(output);
+    }
     for (std::size_t r : rays) rays_ += r;
 }
 
@@ -488,6 +498,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
             total -= link_error;
         }
         std::vector<Link> kept;
+        kept.reserve(r.links.size() - std::count(refine_link.begin(), refine_link.end(), true));
         for (std::size_t k = 0; k < r.links.size(); ++k) {
             if (!refine_link[k]) {
                 kept.push_back(r.links[k]);
