@@ -149,8 +149,8 @@ def choose(settings, exported, zonal=False):
         method = CORE_METHODS[settings["method"]]
     else:
         # Within the budget the core stores F and Gauss-Seidel is fastest (docs/benchmarks.md);
-        # beyond it the hierarchy's memory grows as about n^1.5, not n^2 (docs/hierarchy.md). It has no media:
-        # there progressive refinement solves in memory O(n).
+        # beyond it the hierarchy's memory grows about as the triangle count, not as n^2
+        # (docs/hierarchy.md). It has no media: there progressive refinement solves in memory O(n).
         method = "gauss_seidel" if bound <= budget else ("progressive" if zonal else "hierarchical")
     if zonal and method == "hierarchical":
         raise ValueError("The hierarchical method does not bake fog or smoke yet: choose Automatic or "
