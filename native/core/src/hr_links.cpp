@@ -108,7 +108,7 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
     Rgb out;
     for (int c = 0; c < 3; ++c) {
         const glm::dvec3& m = source.emitter.moment[c];
-        out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, source.emitter.power[c] - glm::length(m)) / 4.0;
+        out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, source.emitter.power[c] - source.emitter.moment_length[c]) / 4.0;
     }
     return out;
 }

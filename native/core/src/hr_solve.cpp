@@ -59,6 +59,7 @@ struct Totals {
 void set_emitter(Node& n) {
     n.emitter.power = n.radiance * double(n.area);
     for (int c = 0; c < 3; ++c) n.emitter.moment[c] = n.emitter.power[c] * glm::dvec3(n.normal);
+    n.emitter.moment_length = n.emitter.power * double(glm::length(n.normal));
 }
 
 void set_range(const Tree& tree, Node& n) {
@@ -103,6 +104,7 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             n.emitter.power += below.emitter.power;
             for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += below.emitter.moment[ch];
         });
+        for (int ch = 0; ch < 3; ++ch) n.emitter.moment_length[ch] = glm::length(n.emitter.moment[ch]);
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;

@@ -43,6 +43,7 @@ struct Link {
 struct Emitter {
     Rgb power{0.0};                 ///< S = sum L A
     std::array<glm::dvec3, 3> moment{};  ///< M = sum L A n, per channel
+    Rgb moment_length{0.0};         ///< |M| per channel (intensity() reads it on every link, every sweep)
 };
 
 /// Six direction bins (+x, -x, +y, -y, +z, -z) of gathered light at normal incidence.
