@@ -61,6 +61,9 @@ private:
     /// The link's estimated radiance error; `receiver_split`: the receiver has children.
     double error(const Node& receiver, const Link& link, bool receiver_split) const;
     double source_error(const Link& link) const;  ///< the part of error() splitting the source reduces
+    /// The error a receiver's links may sum to: `threshold`, or more for a receiver smaller than
+    /// an element of the minimum size, in proportion to its area.
+    double receiver_threshold(const Node& receiver, double threshold) const;
     /// Links the pending pairs, splitting them depth first while their error is too large. Pairs
     /// still waiting after a bounded number of estimates go to the next level, and each level is
     /// one parallel loop with progress and cancel: no pair (the root's two halves of a large

@@ -7,7 +7,9 @@
 /// `min_element_size`. Light moves along links: a receiver node gathers from a source node at
 /// the coarsest pair of levels whose estimated errors, summed over the receiver's links, stay
 /// below `refine_tolerance` times the scene's mean reflected radiance (Hanrahan et al. 1991, "BF
-/// refinement"; clusters after Smits et al. 1994 and Sillion 1995). The estimate is the
+/// refinement"; clusters after Smits et al. 1994 and Sillion 1995); a receiver smaller than an
+/// element of `min_element_size` may err in proportion more, by min_element_size^2 / its area
+/// ("BFA" below the scale the bake resolves). The estimate is the
 /// receiver's reflectance times how the transfer departs from linear over the receiver (its
 /// whole spread once the receiver has children), probed at its corners and centre, times the
 /// source's radiance; a partly visible pair (a shadow boundary) counts as uncertain, and so does
