@@ -158,11 +158,13 @@ def test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit():
     loop_face = np.repeat(np.arange(len(mesh.polygons)), [p.loop_total for p in mesh.polygons])
     centres = np.array([p.center[:] for p in mesh.polygons])[loop_face]
     in_footprint = (np.abs(centres[:, :2] - (low + high) / 2) < (high - low) / 2).all(axis=1)
-    near_outline = (np.abs(corners[:, :2] - (low + high) / 2) <= (high - low) / 2 + 1e-6).all(axis=1)
+    within_outline = (np.abs(corners[:, :2] - (low + high) / 2) <= (high - low) / 2 + 1e-6).all(axis=1)
     lit = RHO * 3.0 / math.pi
-    dark_side, lit_side = colors[in_footprint].max(), np.abs(colors[~in_footprint & near_outline] - lit).max()
+    # Corners of faces outside the footprint that lie on its outline: the lit side.
+    on_lit_side = ~in_footprint & within_outline
+    dark_side, lit_side = colors[in_footprint].max(), np.abs(colors[on_lit_side] - lit).max()
     print("corners on the box's outline: dark side %.2e, lit side %.2e of rho E / pi" % (dark_side / lit, lit_side / lit))
-    assert (~in_footprint & near_outline).sum() > 0 and in_footprint.sum() > 0
+    assert on_lit_side.sum() > 0 and in_footprint.sum() > 0
     assert dark_side < 1e-4 * lit and lit_side < 1e-4 * lit, (dark_side / lit, lit_side / lit)
 
 

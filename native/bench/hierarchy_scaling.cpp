@@ -50,9 +50,11 @@ double scene_side(const test::SceneArrays& a) {
         return glm::dvec3(p[0], p[1], p[2]);
     };
     double area = 0.0;
-    for (std::size_t f = 0; f + 1 < a.face_offsets.size(); ++f)
+    for (std::size_t f = 0; f + 1 < a.face_offsets.size(); ++f) {
+        const glm::dvec3 o = vertex(a.face_offsets[f]);  // fanned from the first corner
         for (int32_t k = a.face_offsets[f] + 1; k + 1 < a.face_offsets[f + 1]; ++k)
-            area += 0.5 * glm::length(glm::cross(vertex(k) - vertex(a.face_offsets[f]), vertex(k + 1) - vertex(a.face_offsets[f])));
+            area += 0.5 * glm::length(glm::cross(vertex(k) - o, vertex(k + 1) - o));
+    }
     return std::sqrt(area / 6.0);
 }
 
@@ -156,8 +158,8 @@ void scaling(const std::string& csv_path, const std::vector<std::size_t>& counts
              double cancel_after) {
     std::ofstream csv(csv_path);
     const std::vector<std::string> columns = {
-        "triangles", "triangle_edge", "min_element_size", "patches", "clusters", "leaves", "nodes", "links", "rays", "bytes",
-        "rounds", "iterations", "cap", "converged", "output", "seconds", "seconds_elements", "seconds_links",
+        "triangles", "triangle_edge", "min_element_size", "patches", "clusters", "leaves", "nodes", "links", "rays",
+        "bytes", "rounds", "iterations", "cap", "converged", "output", "seconds", "seconds_elements", "seconds_links",
         "seconds_solve", "seconds_interpolate", "progress_calls", "longest_gap", "longest_gap_phase"};
     for (const std::string& c : columns) csv << c << ",";
     csv << "peak_mb\n";
