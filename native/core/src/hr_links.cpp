@@ -216,7 +216,6 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     const double near = distance > 0.0 ? std::min(1.0, 2.0 * s.radius / distance) : 1.0;
     if (tree_.can_split(s))
         e.link.source_doubt = static_cast<float>(max_channel(r.reflectance) * F.mean() * (partial ? 1.0 : near * near * near));
-    e.link.direction = glm::normalize(s.centre - r.centre);
     e.useful = e.link.factor > 0.0f || e.link.uncertainty > 0.0f || e.link.source_doubt > 0.0f || e.link.steps > 0.0f;
     return e;
 }
@@ -323,7 +322,6 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     e.source_side = source_part > receiver_part;
     e.link.factor = static_cast<float>(g.mean() * visible);
     e.link.uncertainty = static_cast<float>(max_channel(r.reflectance) * (receiver_part + source_part));
-    e.link.direction = sun ? -s.normal : glm::normalize(s.centre - r.centre);
     e.useful = true;
     return e;
 }
@@ -340,7 +338,7 @@ double Refiner::error(const Node& receiver, const Link& link, bool receiver_spli
     // Intensity towards the centre direction is itself an estimate (other parts of the receiver
     // see the source from elsewhere): bound the error by at least a quarter of the source's power,
     // its mean intensity over all directions.
-    double strength = max_channel(intensity(tree_, s, -link.direction));
+    double strength = max_channel(intensity(tree_, s, -towards_source(receiver, s)));
     if (s.kind == Kind::Cluster || s.is_element()) strength = std::max(strength, max_channel(s.emitter.power) / 4.0);
     return doubt * strength;
 }

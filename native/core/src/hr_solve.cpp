@@ -44,9 +44,10 @@ void gather(Tree& tree, bool lamps_only = false) {
                     r.gathered += double(l.factor) * s.radiance;
                     continue;
                 }
-                const Rgb value = double(l.factor) * intensity(tree, s, -l.direction);
+                const Vec3 direction = towards_source(r, s);
+                const Rgb value = double(l.factor) * intensity(tree, s, -direction);
                 if (r.is_element()) r.gathered += value;
-                else deposit(r.cube, l.direction, value);
+                else deposit(r.cube, direction, value);
             }
         }
     });

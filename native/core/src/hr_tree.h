@@ -5,6 +5,7 @@
 
 #include "radiosity/hierarchy.h"
 
+#include <glm/geometric.hpp>
 #include <tbb/concurrent_vector.h>
 
 #include <algorithm>
@@ -20,9 +21,10 @@ namespace radiosity::hr {
 enum class Kind : uint8_t { Element, Cluster, PointLamp, Sun };
 
 /// Light gathered by a receiver from one source. Element from element: G += factor * L_source.
-/// Otherwise the source is a point source seen along `direction` (receiver to source, unit):
+/// Otherwise the source is a point source seen along towards_source() (receiver to source, unit):
 /// G += factor * intensity(source, -direction), where `factor` holds V cos_r / (pi r^2) (no cos_r
 /// for cluster receivers, which bin it by direction; 1/pi instead of 1/(pi r^2) for suns).
+/// The direction is not stored: links are most of a bake's memory, and both ends know it.
 struct Link {
     int32_t source = -1;
     float factor = 0.0f;
@@ -36,7 +38,6 @@ struct Link {
     /// Added to `uncertainty` once the receiver has children: the link's light reaches them all
     /// alike, so a gradient under it shows as steps (a leaf's corners interpolate it instead).
     float steps = 0.0f;
-    Vec3 direction{0.0f};
 };
 
 /// Per channel: max(0, M . u) + (S - |M|) / 4 is a cluster's intensity towards u (hierarchy.h).
@@ -77,6 +78,11 @@ struct Node {
     bool is_leaf() const { return child_count == 0; }
     bool is_triangle() const { return corners[3] < 0; }
 };
+
+/// The unit direction from `receiver` to a source it gathers from as a point (a sun: towards it).
+inline Vec3 towards_source(const Node& receiver, const Node& source) {
+    return source.kind == Kind::Sun ? -source.normal : glm::normalize(source.centre - receiver.centre);
+}
 
 /// The largest of the three channels.
 inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
