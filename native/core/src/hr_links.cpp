@@ -14,6 +14,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <utility>
 
 namespace radiosity::hr {
 namespace {
@@ -435,17 +436,20 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
         pending.clear();
         for (const auto& level : next) pending.insert(pending.end(), level.begin(), level.end());
     }
-    // Each receiver's list grows once, to its exact size (push_back's doubling would leave up to
-    // half of the links' memory, the bulk of the bake's, unused), and each thread's output is
-    // freed as soon as it is placed.
+    // Each receiver's list grows at most once, to its exact size (push_back's doubling would
+    // leave up to half of the links' memory, the bulk of the bake's, unused), and the threads'
+    // outputs (deques: no spare capacity, no copies as they grow) are freed block by block as
+    // their links are placed.
     std::vector<uint32_t> added(tree_.nodes.size(), 0);
     for (const auto& output : outputs)
         for (const auto& [receiver, l] : output) ++added[receiver];
-    for (std::size_t n = 0; n < added.size(); ++n)
-        if (added[n]) tree_.nodes[n].links.reserve(tree_.nodes[n].links.size() + added[n]);
     for (auto& output : outputs) {
-        for (auto& [receiver, l] : output) tree_.nodes[receiver].links.push_back(l);
-        Output().swap(output);
+        for (; !output.empty(); output.pop_front()) {
+            const auto& [receiver, l] = output.front();
+            std::vector<Link>& links = tree_.nodes[receiver].links;
+            if (added[receiver]) links.reserve(links.size() + std::exchange(added[receiver], 0));
+            links.push_back(l);
+        }
     }
     for (std::size_t r : rays) rays_ += r;
 }
@@ -505,17 +509,18 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
             refine_link[k] = true;
             total -= link_error;
         }
-        std::vector<Link> kept;
-        kept.reserve(r.links.size() - std::count(refine_link.begin(), refine_link.end(), true));
+        // Only this task touches r's own list; new links wait below. It is compacted in place:
+        // copying it would leave the old list's memory to the allocator, round after round.
+        std::size_t kept = 0;
         for (std::size_t k = 0; k < r.links.size(); ++k) {
             if (!refine_link[k]) {
-                kept.push_back(r.links[k]);
+                r.links[kept++] = r.links[k];
                 continue;
             }
             pending.local().push_back({receiver, r.links[k].source, true});
             --links_;
         }
-        r.links = std::move(kept);  // only this task touches r's own list; new links wait below
+        r.links.resize(kept);
         return true;
     });
     std::vector<Pending> all;

@@ -7,6 +7,7 @@
 #include "hr_visibility.h"
 
 #include <atomic>
+#include <deque>
 
 namespace radiosity::hr {
 
@@ -43,7 +44,7 @@ private:
         bool source_side = false;
         int rays = 0;
     };
-    using Output = std::vector<std::pair<int32_t, Link>>;
+    using Output = std::deque<std::pair<int32_t, Link>>;
     /// A pair of nodes waiting to be linked; `split`: split it at least once.
     struct Pending {
         int32_t receiver = -1, source = -1;
