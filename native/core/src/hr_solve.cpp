@@ -8,8 +8,10 @@
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -27,6 +29,9 @@ Rgb read_cube(const AmbientCube& cube, const Vec3& n) {
 void deposit(AmbientCube& cube, const Vec3& direction, const Rgb& value) {
     for (int a = 0; a < 3; ++a) cube[2 * a + (direction[a] >= 0.0f ? 0 : 1)] += value * double(std::abs(direction[a]));
 }
+
+/// Clusters with at least this many patches push and pull their two halves in parallel.
+constexpr int32_t kPatchesPerTask = 2048;
 
 bool is_lamp(const Node& n) { return n.kind == Kind::PointLamp || n.kind == Kind::Sun; }
 
@@ -98,13 +103,31 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
                Totals& totals) {
     Node& n = tree.nodes[id];
     if (n.kind == Kind::Cluster) {
-        n.emitter = Emitter{};
+        struct Below {
+            int32_t node = -1;
+            AmbientCube cube{};
+            Rgb gathered{0.0};
+            Totals totals;
+        };
+        std::array<Below, 2> below;
+        int count = 0;
         pass_down(tree, n, cube_above, [&](int32_t c, const AmbientCube& cube, const Rgb& gathered) {
-            push_pull(tree, c, cube, gathered, update, totals);
-            const Node& below = tree.nodes[c];
-            n.emitter.power += below.emitter.power;
-            for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += below.emitter.moment[ch];
+            below[count++] = {c, cube, gathered, {}};
         });
+        auto visit = [&](Below& b) { push_pull(tree, b.node, b.cube, b.gathered, update, b.totals); };
+        // Large clusters' halves in parallel: a sweep visits every node, and there are millions.
+        if (count == 2 && n.patch_end - n.patch_begin >= kPatchesPerTask)
+            tbb::parallel_invoke([&] { visit(below[0]); }, [&] { visit(below[1]); });
+        else
+            for (int k = 0; k < count; ++k) visit(below[k]);
+        n.emitter = Emitter{};
+        for (int k = 0; k < count; ++k) {
+            const Node& c = tree.nodes[below[k].node];
+            n.emitter.power += c.emitter.power;
+            for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += c.emitter.moment[ch];
+            totals.change += below[k].totals.change;
+            totals.total += below[k].totals.total;
+        }
         for (int ch = 0; ch < 3; ++ch) n.emitter.moment_length[ch] = glm::length(n.emitter.moment[ch]);
         return;
     }
