@@ -235,12 +235,17 @@ TEST(Hierarchy, MemoryCapStopsRefinementWithoutFailing) {
     EXPECT_GT(means.at(0), 0.0);  // the floor is lit
 }
 
-TEST(Hierarchy, CancelStopsTheBake) {
+TEST(Hierarchy, CancelStopsTheBakeInEveryPhase) {
     const auto cornell = test::cornell_box();
-    std::size_t calls = 0;
-    auto cancel_at_solve = [&](const Progress& p) { ++calls; return std::string(p.phase) != "solve"; };
-    EXPECT_THROW(bake_hierarchical(cornell.input(), settings(0.03f, 0.01), cancel_at_solve), Cancelled);
-    EXPECT_GT(calls, 0u);
+    for (const std::string phase : {"elements", "links", "solve", "output"}) {
+        std::size_t calls = 0;
+        auto cancel_in_phase = [&](const Progress& p) {
+            ++calls;
+            return p.phase != phase;
+        };
+        EXPECT_THROW(bake_hierarchical(cornell.input(), settings(0.03f, 0.01), cancel_in_phase), Cancelled) << phase;
+        EXPECT_GT(calls, 0u) << phase;
+    }
 }
 
 TEST(Hierarchy, SceneOfDegeneratePolygonsBakesToNothing) {

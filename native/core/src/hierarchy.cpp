@@ -7,6 +7,8 @@
 #include "hr_output.h"
 #include "hr_solve.h"
 
+#include <tbb/parallel_for.h>
+
 #include <chrono>
 #include <cmath>
 
@@ -81,7 +83,10 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     result.stats.rounds = round;
 
     start = Clock::now();
-    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, hr::lamp_light(tree));
+    const std::vector<Rgb> lamp_light = hr::lamp_light(tree);
+    // The links are most of the memory, and the output mesh is made after them: free them first.
+    tbb::parallel_for(std::size_t(0), tree.nodes.size(), [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
+    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
     result.colors = interpolate_corners(result.output, result.output_radiance, input.material, settings.hard_edge_angle);

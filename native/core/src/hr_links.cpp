@@ -87,6 +87,16 @@ std::pair<float, float> sphere_span(const Vec3& a, const Vec3& b, const Node& n)
 /// Estimates one task makes before it hands its remaining pairs on (some 10 ms).
 constexpr int kEstimatesPerTask = 4096;
 
+/// `progress` with the loops' reports named phase "links".
+ProgressFn as_links(const ProgressFn& progress) {
+    if (!progress) return {};
+    return [progress](const Progress& p) {
+        Progress named = p;
+        named.phase = "links";
+        return progress(named);
+    };
+}
+
 }  // namespace
 
 Refiner::Estimate Refiner::must_split(bool source_side) {
@@ -422,6 +432,7 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
     if (progress)
         level_progress = [&](const Progress& p) {
             Progress all = p;
+            all.phase = "links";
             all.done = done + p.done;
             all.total = done + p.total;
             return progress(all);
@@ -484,7 +495,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         if (!tree_.nodes[n].links.empty()) receivers.push_back(static_cast<int32_t>(n));
     take_split_snapshot();
     tbb::enumerable_thread_specific<std::vector<Pending>> pending;
-    detail::parallel_rows(receivers.size(), 16, 0, progress, [&](std::size_t i) {
+    detail::parallel_rows(receivers.size(), 16, 0, as_links(progress), [&](std::size_t i) {
         const int32_t receiver = receivers[i];
         Node& r = tree_.nodes[receiver];
         // The errors of a receiver's links add up at its leaves (they often err the same way, as

@@ -9,6 +9,8 @@
 namespace radiosity::hr {
 namespace {
 
+constexpr std::size_t kPatchesPerReport = 65536;  ///< some 0.3 s of the leaf mesh
+
 /// Appends the vertices along a -> b, from a up to but without b, where neighbours split it.
 void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>& out) {
     const int32_t m = tree.existing_midpoint(a, b);
@@ -139,10 +141,20 @@ void visit_leaves(const Tree& tree, int32_t id, MeshWriter& writer) {
 
 }  // namespace
 
-LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light) {
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light,
+                   const ProgressFn& progress) {
     LeafMesh mesh;
     MeshWriter writer(tree, build, lamp_light, mesh);
-    for (std::size_t p = 0; p < tree.patch_count; ++p) visit_leaves(tree, static_cast<int32_t>(p), writer);
+    for (std::size_t p = 0; p < tree.patch_count; ++p) {
+        if (progress && p % kPatchesPerReport == 0) {
+            Progress report;
+            report.phase = "output";
+            report.done = p;
+            report.total = tree.patch_count;
+            if (!progress(report)) throw Cancelled();
+        }
+        visit_leaves(tree, static_cast<int32_t>(p), writer);
+    }
     // Input corners: build vertex -> (its polygon, welded tree vertex) -> output vertex.
     const Elements& patches = build.elements;
     std::vector<int32_t> polygon_of_vertex(patches.vertices.size(), -1);

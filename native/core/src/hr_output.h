@@ -17,7 +17,9 @@ struct LeafMesh {
 /// share every vertex on their common edge (no T-vertices). Input corners map to the welded
 /// patch vertices (Elements::corner_vertex), so original meshes get their colours too.
 /// Elements::emission holds E + rho G_lamps (`lamp_light`, per node): the lamps' first
-/// reflection counts as emitted light, as bake() counts it.
-LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light);
+/// reflection counts as emitted light, as bake() counts it. Progress phase "output" (done =
+/// patches written); throws Cancelled.
+LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector<Rgb>& lamp_light,
+                   const ProgressFn& progress);
 
 }  // namespace radiosity::hr

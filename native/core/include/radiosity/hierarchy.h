@@ -76,7 +76,8 @@ struct HierarchyResult {
     double seconds_elements = 0, seconds_links = 0, seconds_solve = 0, seconds_interpolate = 0;
 };
 
-/// Bakes `input` hierarchically. Progress phases "links" (refinement, per round) and "solve";
+/// Bakes `input` hierarchically. Progress phases "elements" (set-up), "links" (refinement, per
+/// round), "solve" and "output" (the leaf mesh);
 /// throws Cancelled, InputError (as build_elements, or when the leaves would pass the cap).
 HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings,
                                   const ProgressFn& progress = {});
