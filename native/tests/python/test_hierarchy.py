@@ -60,7 +60,7 @@ class HierarchicalBakeTest(unittest.TestCase):
         with self.assertRaises(_core.Cancelled):
             _core.bake_hierarchical(*box_arrays(), element_size=0.05, progress=stop_in_solve)
         self.assertEqual(phases[:3], ["elements"] * 3)  # set-up stages report too (and may cancel)
-        self.assertIn("form_factors", phases)
+        self.assertIn("links", phases)
         self.assertEqual(phases[-1], "solve")
 
 
