@@ -12,6 +12,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -19,6 +20,26 @@
 namespace radiosity::hr {
 
 enum class Kind : uint8_t { Element, Cluster, PointLamp, Sun };
+
+/// A non-negative float kept to 8 significant bits (bfloat16, rounded to nearest): enough for an
+/// error estimate that only decides what to refine, in half the bytes of a float.
+class RoughFloat {
+public:
+    RoughFloat(float value = 0.0f) {
+        uint32_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        bits_ = static_cast<uint16_t>((bits + 0x7fffu + ((bits >> 16) & 1u)) >> 16);
+    }
+    operator float() const {
+        const uint32_t bits = uint32_t(bits_) << 16;
+        float value;
+        std::memcpy(&value, &bits, sizeof value);
+        return value;
+    }
+
+private:
+    uint16_t bits_ = 0;
+};
 
 /// Light gathered by a receiver from one source. Element from element: G += factor * L_source.
 /// Otherwise the source is a point source seen along towards_source() (receiver to source, unit):
@@ -34,10 +55,10 @@ struct Link {
     float uncertainty = 0.0f;
     /// Element sources: the error per unit of how much the source's radiance varies over it
     /// (the link uses its mean, and where it is partly hidden or near, the mean misleads).
-    float source_doubt = 0.0f;
+    RoughFloat source_doubt = 0.0f;
     /// Added to `uncertainty` once the receiver has children: the link's light reaches them all
     /// alike, so a gradient under it shows as steps (a leaf's corners interpolate it instead).
-    float steps = 0.0f;
+    RoughFloat steps = 0.0f;
 };
 
 /// Per channel: max(0, M . u) + (S - |M|) / 4 is a cluster's intensity towards u (hierarchy.h).
