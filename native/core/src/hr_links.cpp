@@ -87,6 +87,9 @@ std::pair<float, float> sphere_span(const Vec3& a, const Vec3& b, const Node& n)
 /// Estimates one task makes before it hands its remaining pairs on (some 10 ms).
 constexpr int kEstimatesPerTask = 4096;
 
+/// Links placed in their receivers' lists between two progress reports (some 0.1 s).
+constexpr std::size_t kLinksPerReport = std::size_t(1) << 20;
+
 /// `progress` with the loops' reports named phase "links".
 ProgressFn as_links(const ProgressFn& progress) {
     if (!progress) return {};
@@ -447,22 +450,37 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
         pending.clear();
         for (const auto& level : next) pending.insert(pending.end(), level.begin(), level.end());
     }
+    place(outputs, progress);
+    for (std::size_t r : rays) rays_ += r;
+}
+
+void Refiner::place(tbb::enumerable_thread_specific<Output>& outputs, const ProgressFn& progress) {
     // Each receiver's list grows at most once, to its exact size (push_back's doubling would
     // leave up to half of the links' memory, the bulk of the bake's, unused), and the threads'
     // outputs (deques: no spare capacity, no copies as they grow) are freed block by block as
-    // their links are placed.
+    // their links are placed. One thread: the lists grow in the order the links were made.
     std::vector<uint32_t> added(tree_.nodes.size(), 0);
-    for (const auto& output : outputs)
+    std::size_t count = 0;
+    for (const auto& output : outputs) {
         for (const auto& [receiver, l] : output) ++added[receiver];
+        count += output.size();
+    }
+    std::size_t placed = 0;
     for (auto& output : outputs) {
         for (; !output.empty(); output.pop_front()) {
             const auto& [receiver, l] = output.front();
             std::vector<Link>& links = tree_.nodes[receiver].links;
             if (added[receiver]) links.reserve(links.size() + std::exchange(added[receiver], 0));
             links.push_back(l);
+            if (++placed % kLinksPerReport == 0 && progress) {
+                Progress p;
+                p.phase = "links";
+                p.done = placed;
+                p.total = count;
+                if (!progress(p)) throw Cancelled();
+            }
         }
     }
-    for (std::size_t r : rays) rays_ += r;
 }
 
 void Refiner::take_split_snapshot() {
