@@ -41,7 +41,7 @@ void gather(Tree& tree, bool lamps_only = false) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             Node& r = tree.nodes[i];
             r.gathered = Rgb(0.0);
-            r.cube = AmbientCube{};
+            if (r.kind == Kind::Cluster) tree.cubes[r.cluster] = AmbientCube{};
             for (const Link& l : r.links) {
                 const Node& s = tree.nodes[l.source];
                 if (lamps_only && !is_lamp(s)) continue;
@@ -52,7 +52,7 @@ void gather(Tree& tree, bool lamps_only = false) {
                 const Vec3 direction = towards_source(r, s);
                 const Rgb value = double(l.factor) * intensity(tree, s, -direction);
                 if (r.is_element()) r.gathered += value;
-                else deposit(r.cube, direction, value);
+                else deposit(tree.cubes[r.cluster], direction, value);
             }
         }
     });
@@ -61,12 +61,6 @@ void gather(Tree& tree, bool lamps_only = false) {
 struct Totals {
     double change = 0.0, total = 0.0;
 };
-
-void set_emitter(Node& n) {
-    n.emitter.power = n.radiance * double(n.area);
-    for (int c = 0; c < 3; ++c) n.emitter.moment[c] = n.emitter.power[c] * glm::dvec3(n.normal);
-    n.emitter.moment_length = n.emitter.power * double(glm::length(n.normal));
-}
 
 void set_range(const Tree& tree, Node& n) {
     if (n.is_leaf()) {
@@ -87,7 +81,7 @@ void set_range(const Tree& tree, Node& n) {
 /// `visit(child, cube, gathered)` for each child.
 template <typename Visit>
 void pass_down(const Tree& tree, const Node& cluster, const AmbientCube& cube_above, Visit visit) {
-    AmbientCube cube = cluster.cube;
+    AmbientCube cube = tree.cubes[cluster.cluster];
     for (int b = 0; b < 6; ++b) cube[b] += cube_above[b];
     for (int k = 0; k < cluster.child_count; ++k) {
         const int32_t c = child(cluster, k);
@@ -120,15 +114,16 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             tbb::parallel_invoke([&] { visit(below[0]); }, [&] { visit(below[1]); });
         else
             for (int k = 0; k < count; ++k) visit(below[k]);
-        n.emitter = Emitter{};
+        Emitter& emitter = tree.emitters[n.cluster];
+        emitter = Emitter{};
         for (int k = 0; k < count; ++k) {
-            const Node& c = tree.nodes[below[k].node];
-            n.emitter.power += c.emitter.power;
-            for (int ch = 0; ch < 3; ++ch) n.emitter.moment[ch] += c.emitter.moment[ch];
+            const Emitter c = tree.emitter(tree.nodes[below[k].node]);
+            emitter.power += c.power;
+            for (int ch = 0; ch < 3; ++ch) emitter.moment[ch] += c.moment[ch];
             totals.change += below[k].totals.change;
             totals.total += below[k].totals.total;
         }
-        for (int ch = 0; ch < 3; ++ch) n.emitter.moment_length[ch] = glm::length(n.emitter.moment[ch]);
+        for (int ch = 0; ch < 3; ++ch) emitter.moment_length[ch] = glm::length(emitter.moment[ch]);
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;
@@ -151,7 +146,6 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
         }
         n.radiance = sum / area;
     }
-    set_emitter(n);
     set_range(tree, n);
 }
 

@@ -113,6 +113,8 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     for (std::size_t p = 0; p < patch_count; ++p) patch_order[p] = static_cast<int32_t>(p);
     if (patch_count) root = build_cluster(0, static_cast<int32_t>(patch_count), -1);
     cluster_count = nodes.size() - patch_count;
+    emitters.resize(cluster_count);
+    cubes.resize(cluster_count);
 
     auto add_lamp = [&](Kind kind, std::size_t index) -> Node& {
         lamp_nodes.push_back(static_cast<int32_t>(nodes.size()));
@@ -146,6 +148,7 @@ int32_t Tree::build_cluster(int32_t begin, int32_t end, int32_t parent) {
     {
         Node& c = *nodes.grow_by(1);
         c.kind = Kind::Cluster;
+        c.cluster = id - static_cast<int32_t>(patch_count);
         c.parent = parent;
         c.patch_begin = begin;
         c.patch_end = end;

@@ -78,6 +78,7 @@ struct Node {
     int32_t second_child = -1;      ///< clusters only
     int32_t child_count = 0;
     int32_t lamp = -1;              ///< index into Lights::points or ::suns for lamp nodes
+    int32_t cluster = -1;           ///< clusters: index into Tree::emitters and ::cubes
     // Geometry (fixed once the node exists).
     std::array<int32_t, 4> corners{-1, -1, -1, -1};  ///< elements: vertex ids, [3] = -1 for triangles
     int32_t patch = -1;             ///< elements: the patch they split from (its polygon, material)
@@ -90,9 +91,7 @@ struct Node {
     // Solution.
     Rgb radiance{0.0};              ///< elements: mean leaving radiance
     float radiance_low = 0.0f, radiance_high = 0.0f;  ///< elements: range of the leaves below (largest channel)
-    Emitter emitter;                ///< pulled up from the leaves
     Rgb gathered{0.0};              ///< elements: this sweep's sum over links
-    AmbientCube cube{};             ///< clusters: this sweep's sum over links, binned
     std::vector<Link> links;        ///< what this node gathers from
 
     bool is_element() const { return kind == Kind::Element; }
@@ -103,6 +102,15 @@ struct Node {
 /// The unit direction from `receiver` to a source it gathers from as a point (a sun: towards it).
 inline Vec3 towards_source(const Node& receiver, const Node& source) {
     return source.kind == Kind::Sun ? -source.normal : glm::normalize(source.centre - receiver.centre);
+}
+
+/// An element's emitter: its radiance over its area, along its normal.
+inline Emitter element_emitter(const Node& n) {
+    Emitter e;
+    e.power = n.radiance * double(n.area);
+    for (int c = 0; c < 3; ++c) e.moment[c] = e.power[c] * glm::dvec3(n.normal);
+    e.moment_length = e.power * double(glm::length(n.normal));
+    return e;
 }
 
 /// The largest of the three channels.
@@ -128,11 +136,17 @@ public:
     int32_t root = -1;
     std::size_t patch_count = 0, cluster_count = 0;
     std::vector<int32_t> lamp_nodes;
+    /// Per cluster (Node::cluster), kept apart from the nodes, most of which are elements: what
+    /// it emits, pulled up from its leaves, and this sweep's light gathered on its links, binned.
+    std::vector<Emitter> emitters;
+    std::vector<AmbientCube> cubes;
     float scene_size = 0.0f;                ///< bounding box diagonal, metres
 
     /// Splits element `e` into four (once; safe to call from several threads). Returns false when
     /// it is too small to split (its longest edge is below the minimum element size).
     bool subdivide(int32_t e);
+    /// What a cluster or element emits, as a point source (intensity(), hr_links.h).
+    Emitter emitter(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster] : element_emitter(n); }
     bool can_split(const Node& n) const;
     float min_element_size() const { return min_element_size_; }
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
