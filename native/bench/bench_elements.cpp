@@ -1,7 +1,9 @@
 /// @file bench_elements.cpp
 /// @brief Cost of build_elements with and without cutting along intersections (Google Benchmark):
 /// a 1e6-triangle terrain that intersects nothing, and the Cornell box. Argument: cut off (0) or on (1).
+/// And of interpolate_corners on the terrain's 1e6 elements (the last stage of every bake).
 
+#include "radiosity/interpolation.h"
 #include "radiosity/scene.h"
 #include "test_util.h"
 
@@ -61,7 +63,19 @@ void cornell_elements(benchmark::State& state) {
     build(state, scene, 0.05f);
 }
 
+void terrain_corner_colours(benchmark::State& state) {
+    const BuildResult built = build_elements(terrain().input(), 0.0f, ElementLimits{});
+    std::vector<Rgb> radiance(built.elements.size());
+    for (std::size_t e = 0; e < radiance.size(); ++e) radiance[e] = Rgb(1.0 + built.elements.centre[e].x);
+    for (auto _ : state) {
+        const CornerColors colors = interpolate_corners(built.elements, radiance, terrain().material.data(), 0.5f);
+        benchmark::DoNotOptimize(colors.input_corner.data());
+    }
+    state.counters["elements"] = double(built.elements.size());
+}
+
 }  // namespace
 
+BENCHMARK(terrain_corner_colours)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(terrain_elements)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(cornell_elements)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);

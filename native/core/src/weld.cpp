@@ -46,21 +46,25 @@ float weld_tolerance(const std::vector<Vec3>& points) {
 
 std::vector<int32_t> weld_points(const std::vector<Vec3>& points, float tolerance, std::size_t& count) {
     std::unordered_map<Cell, int32_t, CellHash> representative;  // cell -> id of the point that opened it
+    representative.reserve(points.size());
     std::vector<int32_t> id(points.size());
     std::vector<Vec3> position;  // of each id's first point
     for (std::size_t v = 0; v < points.size(); ++v) {
         const Vec3& p = points[v];
         const Cell c{static_cast<int64_t>(std::floor(p.x / tolerance)), static_cast<int64_t>(std::floor(p.y / tolerance)),
                      static_cast<int64_t>(std::floor(p.z / tolerance))};
-        int32_t found = -1;
+        auto within = [&](const Cell& cell) {
+            const auto it = representative.find(cell);
+            if (it == representative.end()) return -1;
+            const Vec3 d = glm::abs(position[it->second] - p);
+            return d.x <= tolerance && d.y <= tolerance && d.z <= tolerance ? it->second : -1;
+        };
+        // The point's own cell first: a mesh's repeated vertices find their twin there at once.
+        int32_t found = within(c);
         for (int64_t dx = -1; dx <= 1 && found < 0; ++dx)
             for (int64_t dy = -1; dy <= 1 && found < 0; ++dy)
-                for (int64_t dz = -1; dz <= 1 && found < 0; ++dz) {
-                    const auto it = representative.find({c.x + dx, c.y + dy, c.z + dz});
-                    if (it == representative.end()) continue;
-                    const Vec3 d = glm::abs(position[it->second] - p);
-                    if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) found = it->second;
-                }
+                for (int64_t dz = -1; dz <= 1 && found < 0; ++dz)
+                    if (dx || dy || dz) found = within({c.x + dx, c.y + dy, c.z + dz});
         if (found < 0) {
             found = static_cast<int32_t>(position.size());
             position.push_back(p);

@@ -9,9 +9,10 @@
 
 namespace radiosity::detail {
 
-/// Gives every point the id of the first earlier point within `tolerance` of it (max norm),
-/// or a new id. Points are bucketed in cells of size `tolerance`; the 27 cells around a point
-/// hold every candidate, so the result does not depend on where cell borders fall.
+/// Gives every point the id of an earlier point within `tolerance` of it (max norm: the first
+/// point of its own cell, else of a neighbouring cell), or a new id. Points are bucketed in
+/// cells of size `tolerance`; the 27 cells around a point hold every candidate, so whether a
+/// point is welded does not depend on where cell borders fall.
 /// Returns the ids; `count` receives the number of distinct ids.
 std::vector<int32_t> weld_points(const std::vector<Vec3>& points, float tolerance, std::size_t& count);
 
