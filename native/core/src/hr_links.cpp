@@ -119,19 +119,21 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
         default: break;
     }
     const glm::dvec3 direction(u);
-    const Emitter emitter = tree.emitter(source);
-    Rgb out;
-    for (int c = 0; c < 3; ++c) {
-        const glm::dvec3& m = emitter.moment[c];
-        out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, emitter.power[c] - emitter.moment_length[c]) / 4.0;
-    }
-    return out;
+    auto towards = [&](const Emitter& emitter) {
+        Rgb out;
+        for (int c = 0; c < 3; ++c) {
+            const glm::dvec3& m = emitter.moment[c];
+            out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, emitter.power[c] - emitter.moment_length[c]) / 4.0;
+        }
+        return out;
+    };
+    return source.kind == Kind::Cluster ? towards(tree.emitters[source.cluster]) : towards(element_emitter(source));
 }
 
 int Refiner::cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const {
     // Each point is a patch centre reached by walking down from c, taking each child with odds
     // proportional to its power (where the light comes from) or its area (where it lands).
-    auto weight = [&](const Node& n) { return by_power ? max_channel(tree_.emitter(n).power) : double(n.area); };
+    auto weight = [&](const Node& n) { return by_power ? max_channel(tree_.power(n)) : double(n.area); };
     for (int k = 0; k < 4; ++k) {
         const Node* n = &c;
         for (uint32_t h = mix(seed + 0x9e3779b9U * (k + 1)); n->kind == Kind::Cluster; h = mix(h)) {
@@ -354,7 +356,7 @@ double Refiner::error(const Node& receiver, const Link& link, bool receiver_spli
     // see the source from elsewhere): bound the error by at least a quarter of the source's power,
     // its mean intensity over all directions.
     double strength = max_channel(intensity(tree_, s, -towards_source(receiver, s)));
-    if (s.kind == Kind::Cluster || s.is_element()) strength = std::max(strength, max_channel(tree_.emitter(s).power) / 4.0);
+    if (s.kind == Kind::Cluster || s.is_element()) strength = std::max(strength, max_channel(tree_.power(s)) / 4.0);
     return doubt * strength;
 }
 

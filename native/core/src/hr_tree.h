@@ -147,6 +147,8 @@ public:
     bool subdivide(int32_t e);
     /// What a cluster or element emits, as a point source (intensity(), hr_links.h).
     Emitter emitter(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster] : element_emitter(n); }
+    /// Its emitter's power alone (S = sum L A).
+    Rgb power(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster].power : n.radiance * double(n.area); }
     bool can_split(const Node& n) const;
     float min_element_size() const { return min_element_size_; }
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
