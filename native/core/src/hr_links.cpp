@@ -133,15 +133,11 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
 int Refiner::cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const {
     // Each point is a patch centre reached by walking down from c, taking each child with odds
     // proportional to its power (where the light comes from) or its area (where it lands).
-    auto weight = [&](const Node& n) { return by_power ? max_channel(tree_.power(n)) : double(n.area); };
     for (int k = 0; k < 4; ++k) {
         const Node* n = &c;
         for (uint32_t h = mix(seed + 0x9e3779b9U * (k + 1)); n->kind == Kind::Cluster; h = mix(h)) {
-            const Node& a = tree_.nodes[child(*n, 0)];
-            const Node& b = tree_.nodes[child(*n, 1)];
-            double wa = weight(a), wb = weight(b);
-            if (!(wa + wb > 0.0)) wa = a.area, wb = b.area;
-            n = (h / 4294967296.0) * (wa + wb) < wa ? &a : &b;
+            const float first_share = by_power ? n->power_share : n->area_share;
+            n = &tree_.nodes[child(*n, h / 4294967296.0 < first_share ? 0 : 1)];
         }
         points[k] = n->centre;
     }

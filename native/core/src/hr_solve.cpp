@@ -116,14 +116,17 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             for (int k = 0; k < count; ++k) visit(below[k]);
         Emitter& emitter = tree.emitters[n.cluster];
         emitter = Emitter{};
+        std::array<double, 2> power{};
         for (int k = 0; k < count; ++k) {
             const Emitter c = tree.emitter(tree.nodes[below[k].node]);
             emitter.power += c.power;
             for (int ch = 0; ch < 3; ++ch) emitter.moment[ch] += c.moment[ch];
+            power[k] = max_channel(c.power);
             totals.change += below[k].totals.change;
             totals.total += below[k].totals.total;
         }
         for (int ch = 0; ch < 3; ++ch) emitter.moment_length[ch] = glm::length(emitter.moment[ch]);
+        n.power_share = power[0] + power[1] > 0.0 ? static_cast<float>(power[0] / (power[0] + power[1])) : n.area_share;
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;

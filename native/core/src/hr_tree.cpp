@@ -169,6 +169,9 @@ int32_t Tree::build_cluster(int32_t begin, int32_t end, int32_t parent) {
     c.first_child = left;
     c.child_count = 2;
     c.second_child = right;
+    const float area_sum = nodes[left].area + nodes[right].area;
+    c.area_share = area_sum > 0.0f ? nodes[left].area / area_sum : 0.5f;
+    c.power_share = c.area_share;
     return id;
 }
 

@@ -77,6 +77,9 @@ struct Node {
     int32_t first_child = -1;       ///< elements: 4 contiguous children; clusters: 2, see child()
     int32_t second_child = -1;      ///< clusters only
     int32_t child_count = 0;
+    /// Clusters: the first child's share of the power (after each solve) and of the area, which
+    /// cluster_samples' walk down the tree reads here, without touching the other child.
+    float power_share = 0.5f, area_share = 0.5f;
     int32_t lamp = -1;              ///< index into Lights::points or ::suns for lamp nodes
     int32_t cluster = -1;           ///< clusters: index into Tree::emitters and ::cubes
     // Geometry (fixed once the node exists).
