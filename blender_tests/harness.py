@@ -103,3 +103,25 @@ def corner_colors(mesh, name):
     values = np.empty(len(mesh.loops) * 4, dtype=np.float32)
     attribute.data.foreach_get("color", values)
     return values.reshape(-1, 4)[:, :3].astype(np.float64)
+
+
+def file_state():
+    """Everything a bake may touch, as comparable plain data (a cancelled or failed bake must
+    leave it equal)."""
+    import numpy as np
+    meshes = {}
+    for mesh in bpy.data.meshes:
+        colors = {}
+        for attribute in mesh.color_attributes:
+            values = np.empty(len(attribute.data) * 4, dtype=np.float32)
+            attribute.data.foreach_get("color", values)
+            colors[attribute.name] = (attribute.domain, attribute.data_type, values.tobytes())
+        meshes[mesh.name] = (colors, mesh.color_attributes.active_color_name, len(mesh.materials))
+    return {
+        "objects": sorted(o.name for o in bpy.data.objects),
+        "collections": sorted(c.name for c in bpy.data.collections),
+        "materials": sorted(m.name for m in bpy.data.materials),
+        "meshes": meshes,
+        "report": bpy.context.scene.radiosity.last_report,
+        "keys": sorted(bpy.context.scene.keys()),
+    }

@@ -8,6 +8,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -19,6 +20,7 @@ import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
+operators = sys.modules[harness.MODULE + ".operators"]
 
 LAMP_HEIGHT = 1.0
 RHO = 0.8
@@ -168,6 +170,34 @@ def test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit():
     assert dark_side < 1e-4 * lit and lit_side < 1e-4 * lit, (dark_side / lit, lit_side / lit)
 
 
+def test_esc_while_the_hierarchy_refines_changes_nothing():
+    # The worker the interactive operator runs, cancelled as Esc does once the core reports the
+    # links phase (refinement, the bulk of a hierarchical bake's time).
+    floor_under_lamp()
+    settings = bpy.context.scene.radiosity
+    settings.quality = "CUSTOM"
+    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.005, 0.002
+    before = harness.file_state()
+    view_layer, depsgraph = addon.pipeline.view_layer_and_depsgraph(bpy.context.scene)
+    worker = operators._Worker(addon.pipeline.BakeJob(bpy.context.scene, depsgraph, view_layer), want_layout=False)
+    worker.thread.start()
+    phases = []
+    deadline = time.perf_counter() + 120
+    while not worker.done and time.perf_counter() < deadline:
+        info = worker.monitor.snapshot()
+        if info is not None and (not phases or phases[-1] != info["phase"]):
+            phases.append(info["phase"])
+        if phases and phases[-1] == "links":
+            break
+        time.sleep(0.001)
+    worker.cancel()
+    worker.thread.join(timeout=600)
+    print("phases seen before Esc:", phases)
+    assert phases and phases[-1] == "links", phases
+    assert worker.done and worker.cancelled and worker.error is None, (worker.done, worker.cancelled, worker.error)
+    assert harness.file_state() == before
+
+
 def test_fog_refuses_the_method_and_changes_nothing():
     floor = floor_under_lamp()
     fog = bpy.data.materials.new("Fog")
@@ -199,4 +229,4 @@ def test_fog_refuses_the_method_and_changes_nothing():
 harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
             test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
             test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit,
-            test_fog_refuses_the_method_and_changes_nothing)
+            test_esc_while_the_hierarchy_refines_changes_nothing, test_fog_refuses_the_method_and_changes_nothing)

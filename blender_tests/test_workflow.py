@@ -33,31 +33,11 @@ def quick_box():
     return box
 
 
-def fingerprint():
-    """Everything a bake may touch, as comparable plain data."""
-    meshes = {}
-    for mesh in bpy.data.meshes:
-        colors = {}
-        for attribute in mesh.color_attributes:
-            values = np.empty(len(attribute.data) * 4, dtype=np.float32)
-            attribute.data.foreach_get("color", values)
-            colors[attribute.name] = (attribute.domain, attribute.data_type, values.tobytes())
-        meshes[mesh.name] = (colors, mesh.color_attributes.active_color_name, len(mesh.materials))
-    return {
-        "objects": sorted(o.name for o in bpy.data.objects),
-        "collections": sorted(c.name for c in bpy.data.collections),
-        "materials": sorted(m.name for m in bpy.data.materials),
-        "meshes": meshes,
-        "report": bpy.context.scene.radiosity.last_report,
-        "keys": sorted(bpy.context.scene.keys()),
-    }
-
-
 def test_cancel_changes_nothing():
     quick_box()
     # Small elements: the form factors take long enough to be cancelled half-way.
     bpy.context.scene.radiosity.element_size = 0.04
-    before = fingerprint()
+    before = harness.file_state()
     view_layer, depsgraph = pipeline.view_layer_and_depsgraph(bpy.context.scene)
     job = pipeline.BakeJob(bpy.context.scene, depsgraph, view_layer)
 
@@ -73,7 +53,7 @@ def test_cancel_changes_nothing():
     worker.thread.join(timeout=600)
     assert reported is not None and reported["phase"] == "form_factors" and reported["done"] < reported["total"], reported
     assert worker.done and worker.cancelled and worker.error is None, (worker.done, worker.cancelled, worker.error)
-    assert fingerprint() == before
+    assert harness.file_state() == before
 
     # The synchronous path raises the core's Cancelled and has written nothing either.
     try:
@@ -82,21 +62,21 @@ def test_cancel_changes_nothing():
         pass
     else:
         raise AssertionError("returning False from progress did not cancel")
-    assert fingerprint() == before
+    assert harness.file_state() == before
 
 
 def test_rebake_is_idempotent():
     box = quick_box()
     addon.bake(bpy.context.scene)
-    first = fingerprint()
+    first = harness.file_state()
     addon.bake(bpy.context.scene)
-    assert fingerprint()["meshes"] == first["meshes"], "re-bake changed the ORIGINAL output"
+    assert harness.file_state()["meshes"] == first["meshes"], "re-bake changed the ORIGINAL output"
     assert list(box.data.color_attributes.keys()) == ["Radiosity"]
 
     addon.bake(bpy.context.scene, target="COPIES")
-    copies = fingerprint()
+    copies = harness.file_state()
     addon.bake(bpy.context.scene, target="COPIES")
-    again = fingerprint()
+    again = harness.file_state()
     assert again["objects"] == copies["objects"] and again["meshes"] == copies["meshes"], "re-bake changed COPIES"
     made = [o for o in bpy.data.collections["Radiosity Bake"].objects]
     assert [o.name for o in made] == ["Cornell Box Radiosity"], [o.name for o in made]
@@ -109,12 +89,12 @@ def test_rebake_is_idempotent():
 def test_undo_restores():
     mesh_name = quick_box().data.name  # undo replaces every Python reference to data
     bpy.ops.ed.undo_push(message="before bake")
-    before = fingerprint()
+    before = harness.file_state()
     # As a click does: scripts only push an undo step when asked (the second argument).
     assert bpy.ops.radiosity.bake("EXEC_DEFAULT", True) == {"FINISHED"}
     assert bpy.data.meshes[mesh_name].color_attributes.get("Radiosity") is not None
     bpy.ops.ed.undo()
-    assert fingerprint() == before, "one undo did not remove the bake"
+    assert harness.file_state() == before, "one undo did not remove the bake"
     bpy.ops.ed.redo()
     assert bpy.data.meshes[mesh_name].color_attributes.get("Radiosity") is not None, "redo lost the bake"
 
@@ -124,7 +104,7 @@ def test_preview_restores():
     addon.bake(bpy.context.scene)
     shadings = [a.spaces.active.shading for s in bpy.data.screens for a in s.areas if a.type == "VIEW_3D"]
     assert shadings, "no 3D view in the factory startup file"
-    before = fingerprint()
+    before = harness.file_state()
     before_shading = [(s.type, s.color_type, s.light) for s in shadings]
     assert bpy.ops.radiosity.preview() == {"FINISHED"}
     assert all((s.type, s.color_type, s.light) == ("SOLID", "VERTEX", "FLAT") for s in shadings)
@@ -132,7 +112,7 @@ def test_preview_restores():
     assert all(slot.material.name == "Radiosity Preview" for slot in box.material_slots)
     assert bpy.ops.radiosity.preview() == {"FINISHED"}
     assert [(s.type, s.color_type, s.light) for s in shadings] == before_shading
-    assert fingerprint() == before
+    assert harness.file_state() == before
 
 
 def test_enable_disable_twice():
