@@ -9,7 +9,7 @@
 namespace radiosity::hr {
 namespace {
 
-constexpr std::size_t kPatchesPerReport = 65536;  ///< some 0.3 s of the leaf mesh
+constexpr std::size_t kPatchesPerReport = 65536;  ///< a small part of a second of the leaf mesh
 
 /// Appends the vertices along a -> b, from a up to but without b, where neighbours split it.
 void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>& out) {
