@@ -21,7 +21,7 @@ SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& s
     tbb::enumerable_thread_specific<RowRenderer> renderers([&] { return RowRenderer(weights, settings); });
     std::vector<SparseRow> rows(n);
 
-    detail::parallel_rows(n, 16, n, progress, [&](std::size_t i) {
+    detail::parallel_rows("form_factors", n, 16, n, progress, [&](std::size_t i) {
         renderers.local().row(elements, static_cast<int32_t>(i), rows[i]);
         return true;
     });

@@ -6,6 +6,7 @@
 #include "hr_links.h"
 #include "hr_output.h"
 #include "hr_solve.h"
+#include "report_progress.h"
 
 #include <tbb/parallel_for.h>
 
@@ -34,13 +35,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     check(settings);
     HierarchyResult result;
     // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
-    auto stage = [&](std::size_t done) {
-        Progress p;
-        p.phase = "elements";
-        p.done = done;
-        p.total = 3;
-        if (progress && !progress(p)) throw Cancelled();
-    };
+    auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };
     auto start = Clock::now();
     result.build = build_elements(input, 0.0f, settings.limits);
     const Elements& patches = result.build.elements;
@@ -85,7 +80,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     start = Clock::now();
     const std::vector<Rgb> lamp_light = hr::lamp_light(tree);
     // The links are most of the memory, and the output mesh is made after them: free them first.
-    tbb::parallel_for(std::size_t(0), tree.nodes.size(), [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
+    tbb::parallel_for(std::size_t(0), tree.nodes.size(),
+                      [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);

@@ -3,6 +3,7 @@
 #include "hr_links.h"
 
 #include "parallel_rows.h"
+#include "report_progress.h"
 #include "radiosity/near_field.h"
 
 #include <glm/common.hpp>
@@ -89,16 +90,6 @@ constexpr int kEstimatesPerTask = 4096;
 
 /// Links placed in their receivers' lists between two progress reports (some 0.1 s).
 constexpr std::size_t kLinksPerReport = std::size_t(1) << 20;
-
-/// `progress` with the loops' reports named phase "links".
-ProgressFn as_links(const ProgressFn& progress) {
-    if (!progress) return {};
-    return [progress](const Progress& p) {
-        Progress named = p;
-        named.phase = "links";
-        return progress(named);
-    };
-}
 
 }  // namespace
 
@@ -435,14 +426,13 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
     if (progress)
         level_progress = [&](const Progress& p) {
             Progress all = p;
-            all.phase = "links";
             all.done = done + p.done;
             all.total = done + p.total;
             return progress(all);
         };
     while (!pending.empty()) {
         tbb::enumerable_thread_specific<std::vector<Pending>> next;
-        detail::parallel_rows(pending.size(), 16, 0, level_progress, [&](std::size_t i) {
+        detail::parallel_rows("links", pending.size(), 16, 0, level_progress, [&](std::size_t i) {
             link_depth_first(pending[i], threshold, outputs.local(), next.local(), rays.local());
             return true;
         });
@@ -472,13 +462,7 @@ void Refiner::place(tbb::enumerable_thread_specific<Output>& outputs, const Prog
             std::vector<Link>& links = tree_.nodes[receiver].links;
             if (added[receiver]) links.reserve(links.size() + std::exchange(added[receiver], 0));
             links.push_back(l);
-            if (++placed % kLinksPerReport == 0 && progress) {
-                Progress p;
-                p.phase = "links";
-                p.done = placed;
-                p.total = count;
-                if (!progress(p)) throw Cancelled();
-            }
+            if (++placed % kLinksPerReport == 0) detail::report_progress(progress, "links", placed, count);
         }
     }
 }
@@ -513,7 +497,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         if (!tree_.nodes[n].links.empty()) receivers.push_back(static_cast<int32_t>(n));
     take_split_snapshot();
     tbb::enumerable_thread_specific<std::vector<Pending>> pending;
-    detail::parallel_rows(receivers.size(), 16, 0, as_links(progress), [&](std::size_t i) {
+    detail::parallel_rows("links", receivers.size(), 16, 0, progress, [&](std::size_t i) {
         const int32_t receiver = receivers[i];
         Node& r = tree_.nodes[receiver];
         // The errors of a receiver's links add up at its leaves (they often err the same way, as

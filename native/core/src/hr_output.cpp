@@ -2,6 +2,8 @@
 /// @brief Leaves to a conforming mesh (hr_output.h).
 #include "hr_output.h"
 
+#include "report_progress.h"
+
 #include <glm/geometric.hpp>
 
 #include <unordered_map>
@@ -146,13 +148,7 @@ LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector
     LeafMesh mesh;
     MeshWriter writer(tree, build, lamp_light, mesh);
     for (std::size_t p = 0; p < tree.patch_count; ++p) {
-        if (progress && p % kPatchesPerReport == 0) {
-            Progress report;
-            report.phase = "output";
-            report.done = p;
-            report.total = tree.patch_count;
-            if (!progress(report)) throw Cancelled();
-        }
+        if (p % kPatchesPerReport == 0) detail::report_progress(progress, "output", p, tree.patch_count);
         visit_leaves(tree, static_cast<int32_t>(p), writer);
     }
     // Input corners: build vertex -> (its polygon, welded tree vertex) -> output vertex.

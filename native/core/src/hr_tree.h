@@ -107,10 +107,13 @@ inline Vec3 towards_source(const Node& receiver, const Node& source) {
     return source.kind == Kind::Sun ? -source.normal : glm::normalize(source.centre - receiver.centre);
 }
 
-/// An element's emitter: its radiance over its area, along its normal.
+/// An element's power: its radiance over its area.
+inline Rgb element_power(const Node& n) { return n.radiance * double(n.area); }
+
+/// An element's emitter: its power, along its normal.
 inline Emitter element_emitter(const Node& n) {
     Emitter e;
-    e.power = n.radiance * double(n.area);
+    e.power = element_power(n);
     for (int c = 0; c < 3; ++c) e.moment[c] = e.power[c] * glm::dvec3(n.normal);
     e.moment_length = e.power * double(glm::length(n.normal));
     return e;
@@ -151,7 +154,7 @@ public:
     /// What a cluster or element emits, as a point source (intensity(), hr_links.h).
     Emitter emitter(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster] : element_emitter(n); }
     /// Its emitter's power alone (S = sum L A).
-    Rgb power(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster].power : n.radiance * double(n.area); }
+    Rgb power(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster].power : element_power(n); }
     bool can_split(const Node& n) const;
     float min_element_size() const { return min_element_size_; }
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.

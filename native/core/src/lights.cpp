@@ -7,6 +7,7 @@
 #include "radiosity/lights.h"
 
 #include "radiosity/hemicube.h"
+#include "report_progress.h"
 #include "sun_raster.h"
 
 #include <glm/geometric.hpp>
@@ -40,15 +41,6 @@ void add_point_light(const Elements& elements, const PointLight& light, Hemicube
     }
 }
 
-void report(const ProgressFn& progress, std::size_t done, std::size_t total) {
-    if (!progress) return;
-    Progress p;
-    p.phase = "lights";
-    p.done = done;
-    p.total = total;
-    if (!progress(p)) throw Cancelled();
-}
-
 }  // namespace
 
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress) {
@@ -59,12 +51,12 @@ std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& light
         Hemicube cube(CubeWeights::make(lights.resolution));
         for (const PointLight& light : lights.points) {
             add_point_light(elements, light, cube, irradiance);
-            report(progress, ++done, total);
+            detail::report_progress(progress, "lights", ++done, total);
         }
     }
     for (const SunLight& sun : lights.suns) {
         add_sun_light(elements, sun, lights.resolution, irradiance);
-        report(progress, ++done, total);
+        detail::report_progress(progress, "lights", ++done, total);
     }
     return irradiance;
 }

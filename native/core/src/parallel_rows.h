@@ -14,12 +14,13 @@
 
 namespace radiosity::detail {
 
-/// Runs `row(i)` for i in [0, count) in parallel (TBB), reporting phase "form_factors" about every
+/// Runs `row(i)` for i in [0, count) in parallel (TBB), reporting `phase` about every
 /// 1% from one thread at a time. `row` returns false to stop the loop early (a budget exceeded).
 /// Returns whether every row was done; throws Cancelled on the caller's thread when the callback
 /// asked to stop (it may run on a worker thread, where throwing would not reach the caller).
 template <typename Row>
-bool parallel_rows(std::size_t count, std::size_t grain, std::size_t element_count, const ProgressFn& progress, Row row) {
+bool parallel_rows(const char* phase, std::size_t count, std::size_t grain, std::size_t element_count,
+                   const ProgressFn& progress, Row row) {
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false}, stopped{false};
     std::mutex report;
@@ -28,7 +29,7 @@ bool parallel_rows(std::size_t count, std::size_t grain, std::size_t element_cou
         if (!progress) return;
         std::lock_guard<std::mutex> lock(report);
         Progress p;
-        p.phase = "form_factors";
+        p.phase = phase;
         p.done = finished;
         p.total = count;
         p.element_count = element_count;

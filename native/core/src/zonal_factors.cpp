@@ -102,7 +102,7 @@ ZonalMatrix compute_exchange_factors(const Elements& elements, const std::vector
         [&] { return ZonalRowRenderer(elements, zones, tracer, settings); });
     std::vector<ZonalRow> rows(unknowns);
     std::atomic<std::size_t> bytes{unknowns * sizeof(int64_t)};
-    const bool within_budget = detail::parallel_rows(unknowns, 4, elements.size(), progress, [&](std::size_t x) {
+    const bool within_budget = detail::parallel_rows("form_factors", unknowns, 4, elements.size(), progress, [&](std::size_t x) {
         renderers.local().row(static_cast<int32_t>(x), rows[x]);
         return (bytes += rows[x].col.size() * bytes_per_nonzero) <= settings.budget_bytes;
     });
