@@ -173,7 +173,8 @@ def report_line(summary):
                                                       summary["zone_size"])
     hierarchy = summary.get("hierarchy")
     if hierarchy:
-        zones = " (%d leaves of %d faces, %d links)" % (hierarchy["leaves"], hierarchy["patches"], hierarchy["links"])
+        zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
+            hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
     return "%d elements%s, %s, %d iterations, residual %.2g (%s), %.1f s" % (
         summary["elements"], zones, METHOD_LABELS[summary["method"]], summary["iterations"],
         summary["residual"], state, seconds)

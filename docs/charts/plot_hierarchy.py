@@ -76,30 +76,35 @@ def accuracy(rows, png, txt):
     for ax, scene in zip(axes, scenes):
         mine = [r for r in rows if r["scene"] == scene]
         uniform = [(int(r["elements"]), float(r["rms"])) for r in mine if r["method"] == "uniform"]
-        hier = [r for r in mine if r["method"] == "hierarchy"]
         ax.loglog(*zip(*sorted(uniform)), marker="o", label="uniform mesh")
-        ax.loglog([int(r["elements"]) for r in hier], [float(r["rms"]) for r in hier], marker="s",
-                  label="hierarchy (leaves)")
-        ax.loglog([int(r["output_elements"]) for r in hier], [float(r["rms"]) for r in hier], marker="^",
-                  linestyle="--", label="hierarchy (output mesh)")
-        for r in hier:
-            ax.annotate(r["parameter"], (int(r["elements"]), float(r["rms"])), textcoords="offset points",
-                        xytext=(3, 3), fontsize=7)
+        methods = sorted({r["method"] for r in mine if r["method"].startswith("hierarchy")})
+        for method in methods:
+            hier = [r for r in mine if r["method"] == method]
+            name = f"{method} (leaves to {hier[0]['min_size']} m, lamp detail {hier[0]['lamp_levels']} levels)"
+            line, = ax.loglog([int(r["elements"]) for r in hier], [float(r["rms"]) for r in hier], marker="s",
+                              label=f"{name}: leaves")
+            ax.loglog([int(r["output_elements"]) for r in hier], [float(r["rms"]) for r in hier], marker="^",
+                      linestyle="--", color=line.get_color(), label="  the same: output mesh")
+            for r in hier:
+                ax.annotate(r["parameter"], (int(r["elements"]), float(r["rms"])), textcoords="offset points",
+                            xytext=(3, 3), fontsize=7)
         agree = next(r for r in mine if r["method"] == "reference_uniform")
         ax.set_title(f"{scene} (references differ by rms {float(agree['rms']):.3f})")
         ax.set_xlabel("elements")
-        ax.set_ylabel("RMS corner-colour error / mean radiance")
+        ax.set_ylabel("RMS colour error / mean radiance")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
+        ax.legend(fontsize=7)
         for column, reference in (("rms", "hierarchy"), ("rms_vs_uniform_ref", "uniform")):
             points = [(int(r["elements"]), float(r[column])) for r in mine if r["method"] == "uniform"]
-            out.append(f"{scene} against the {reference} reference: refine_tolerance, leaves, output elements, rms, "
-                       f"uniform elements at that rms, ratio to leaves, ratio to output elements")
-            for r in hier:
-                equal, note = uniform_elements_at(float(r[column]), points)
-                out.append(f"  {r['parameter']:>6} {int(r['elements']):>8} {int(r['output_elements']):>8} "
-                           f"{float(r[column]):.4f} {equal:>10.0f} {equal / int(r['elements']):6.2f} "
-                           f"{equal / int(r['output_elements']):6.2f}{note}")
+            for method in methods:
+                out.append(f"{scene}, {method}, against the {reference} reference: refine_tolerance, leaves, "
+                           f"output elements, rms, uniform elements at that rms, ratio to leaves, "
+                           f"ratio to output elements")
+                for r in (r for r in mine if r["method"] == method):
+                    equal, note = uniform_elements_at(float(r[column]), points)
+                    out.append(f"  {r['parameter']:>6} {int(r['elements']):>8} {int(r['output_elements']):>8} "
+                               f"{float(r[column]):.4f} {equal:>10.0f} {equal / int(r['elements']):6.2f} "
+                               f"{equal / int(r['output_elements']):6.2f}{note}")
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     with open(txt, "w") as f:

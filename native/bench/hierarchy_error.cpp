@@ -1,5 +1,8 @@
 #include "hierarchy_error.h"
 
+#include "radiosity/hierarchy.h"
+#include "radiosity/interpolation.h"
+
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
@@ -144,6 +147,13 @@ Samples sample_polygons(const SceneInput& input, float spacing) {
         if (emitted[0] > 0.0f || emitted[1] > 0.0f || emitted[2] > 0.0f) continue;
         const int32_t first = input.face_offsets[f], end = input.face_offsets[f + 1];
         const Vec3 o = corner(first);
+        glm::dvec3 newell(0.0);
+        for (int32_t k = first; k < end; ++k) {
+            const glm::dvec3 a(corner(k)), b(corner(k + 1 < end ? k + 1 : first));
+            newell += glm::cross(a, b);
+        }
+        const Vec3 normal(glm::normalize(newell));
+        const float* rho = input.reflectance + 3 * f;
         for (int32_t k = first + 1; k + 1 < end; ++k) {
             const Vec3 a = corner(k) - o, b = corner(k + 1) - o;
             const float longest = std::max({glm::length(a), glm::length(b), glm::length(b - a)});
@@ -153,6 +163,8 @@ Samples sample_polygons(const SceneInput& input, float spacing) {
                 s.point.push_back(o + float(i / n) * a + float(j / n) * b);
                 s.weight.push_back(weight);
                 s.polygon.push_back(int32_t(f));
+                s.normal.push_back(normal);
+                s.reflectance.push_back(Rgb(rho[0], rho[1], rho[2]));
             };
             for (int i = 0; i < n; ++i)
                 for (int j = 0; i + j < n; ++j) {
@@ -183,6 +195,25 @@ std::vector<Rgb> colours_at(const Samples& samples, const Elements& mesh, const 
         if (p < locators.size() && locators[p]) colours[i] = locators[p]->colour(samples.point[i], element_corner, located);
         unlocated += !located;
     }
+    return colours;
+}
+
+std::vector<Rgb> lamp_light_at(const Samples& samples, const Elements& surfaces, const Lights& lights) {
+    std::vector<Rgb> light(samples.point.size(), Rgb(0.0));
+    if (lights.empty()) return light;
+    const std::vector<Rgb> irradiance = lamp_irradiance_at(surfaces, lights, samples.point, samples.normal);
+    for (std::size_t i = 0; i < light.size(); ++i) light[i] = samples.reflectance[i] * irradiance[i] / M_PI;
+    return light;
+}
+
+std::vector<Rgb> reference_colours(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& radiance,
+                                   const int32_t* material, const std::vector<Rgb>& lamp_light) {
+    std::vector<Rgb> rest(mesh.size());
+    for (std::size_t e = 0; e < mesh.size(); ++e) rest[e] = radiance[e] - mesh.emission[e];
+    const CornerColors corners = interpolate_corners(mesh, rest, material, HierarchySettings().hard_edge_angle);
+    std::size_t unlocated = 0;
+    std::vector<Rgb> colours = colours_at(samples, mesh, corners.element_corner, unlocated);
+    for (std::size_t i = 0; i < colours.size(); ++i) colours[i] += lamp_light[i];
     return colours;
 }
 

@@ -3,6 +3,7 @@
 /// read at a dense grid of points over every input polygon.
 #pragma once
 
+#include "radiosity/lights.h"
 #include "radiosity/scene.h"
 
 #include <cstddef>
@@ -16,6 +17,8 @@ struct Samples {
     std::vector<Vec3> point;
     std::vector<double> weight;
     std::vector<int32_t> polygon;
+    std::vector<Vec3> normal;       ///< the polygon's (Newell's) unit normal
+    std::vector<Rgb> reflectance;   ///< the polygon's
 };
 
 /// Each polygon fanned into triangles, each triangle cut into n^2 equal triangles with edges of
@@ -27,6 +30,17 @@ Samples sample_polygons(const SceneInput& input, float spacing);
 /// (quads). `unlocated` counts samples found in no element (the nearest one is used).
 std::vector<Rgb> colours_at(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& element_corner,
                             std::size_t& unlocated);
+
+/// The lamps' first reflection at each sample, rho E / pi, exact: one shadow ray per lamp against
+/// `surfaces` (lamp_irradiance_at). Zero without lamps.
+std::vector<Rgb> lamp_light_at(const Samples& samples, const Elements& surfaces, const Lights& lights);
+
+/// A reference's colours as the truth: its light without the lamps' first reflection (radiance
+/// minus the elements' emission, which holds that reflection; emitters are not sampled),
+/// interpolated to its corners and read at the samples, plus the lamps' exact light there.
+/// Interpolated element means blur a lamp's sharp shadow over an element; the truth has none.
+std::vector<Rgb> reference_colours(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& radiance,
+                                   const int32_t* material, const std::vector<Rgb>& lamp_light);
 
 struct ColourError {
     double rms = 0.0;  ///< area-weighted RMS of the colour difference / reference's mean radiance

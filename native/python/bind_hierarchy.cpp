@@ -19,6 +19,7 @@ py::dict hierarchy_counts(const HierarchyStats& stats) {
     out["patches"] = stats.patches;
     out["clusters"] = stats.clusters;
     out["leaves"] = stats.leaves;
+    out["lamp_splits"] = stats.lamp_splits;
     out["nodes"] = stats.nodes;
     out["links"] = stats.links;
     out["rays"] = stats.rays;

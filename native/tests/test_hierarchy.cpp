@@ -8,6 +8,7 @@
 #include "test_util.h"
 
 #include <gtest/gtest.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -137,6 +138,81 @@ TEST(Hierarchy, SunLightsAFloorUniformlyExceptInTheShadowOfABlock) {
     EXPECT_GT(checked, 100u);
 }
 
+TEST(Hierarchy, LampLightAtTheCornersIsExactOnACoarseMesh) {
+    // A bare 2 m floor 1 m under a lamp, in 1 m leaves: the lamp's light varies by 3x over it,
+    // and leaf means interpolated to the corners would miss it by tens of percent. The corners
+    // show rho I cos / (pi r^2) as it is at each one (nothing else lights the floor).
+    test::SceneArrays scene;
+    scene.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(0.5));
+    HierarchySettings s = with_lamp(settings(1.0f, 0.01), Vec3(0.3f, 0.2f, 1.0f));
+    s.lamp_detail_levels = 0;
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    ASSERT_EQ(r.output.size(), 4u);
+    EXPECT_EQ(r.stats.lamp_splits, 0u);
+    for (std::size_t e = 0; e < r.output.size(); ++e)
+        for (int k = 0; k < 4; ++k) {
+            const Vec3 d = s.lights.points[0].position - r.output.vertices[r.output.corners[e][k]];
+            const double r2 = glm::dot(d, d), exact = 0.5 * (d.z / std::sqrt(r2)) / (M_PI * r2);
+            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 1e-3 * exact) << "element " << e << " corner " << k;
+        }
+}
+
+TEST(Hierarchy, LampShadowEdgeIsResolvedWithoutFinerLinks) {
+    // The sun of the test above over a floor of 0.5 m tiles, a 0.5 x 0.6 m card 0.5 m up: leaves
+    // split down to 0.25 m, then after the solve three levels further (to 1/32 m) only where the
+    // sun's light departs from their corners, which is along the shadow's edge. Elsewhere every
+    // corner is exact, and the links are those of a bake without this detail.
+    test::SceneArrays scene;
+    for (float x = -2; x < 2; x += 0.5f)
+        for (float y = -2; y < 2; y += 0.5f) scene.add_quad({x, y, 0}, {x + 0.5f, y, 0}, {x + 0.5f, y + 0.5f, 0}, {x, y + 0.5f, 0}, Rgb(0.5));
+    scene.add_quad({-0.25f, -0.3f, 0.5f}, {-0.25f, 0.3f, 0.5f}, {0.25f, 0.3f, 0.5f}, {0.25f, -0.3f, 0.5f}, Rgb(0.0));
+    HierarchySettings s = settings(0.2f, 0.01);
+    SunLight sun;
+    const float zenith = float(M_PI) / 3.0f;
+    sun.direction = Vec3(std::sin(zenith), 0.0f, -std::cos(zenith));
+    sun.irradiance = Rgb(2.0);
+    s.lights.suns.push_back(sun);
+    s.lamp_detail_levels = 3;
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    HierarchySettings plain = s;
+    plain.lamp_detail_levels = 0;
+    const HierarchyResult without = bake_hierarchical(scene.input(), plain);
+    EXPECT_EQ(r.stats.links, without.stats.links);
+    EXPECT_GT(r.stats.lamp_splits, 0u);
+
+    const double lit = 0.5 * 2.0 * std::cos(zenith) / M_PI;
+    const float x0 = 0.616f, x1 = 1.116f, y0 = -0.3f, y1 = 0.3f;  // the shadow: the card moved 0.5 tan 60 deg
+    std::size_t on_edge = 0, floor_elements = 0;
+    for (std::size_t e = 0; e < r.output.size(); ++e) {
+        if (r.output.polygon[e] == 64) continue;  // the card
+        ++floor_elements;
+        const int count = r.output.is_triangle(e) ? 3 : 4;
+        Vec3 low(1e9f), high(-1e9f);
+        for (int k = 0; k < count; ++k) {
+            low = glm::min(low, r.output.vertices[r.output.corners[e][k]]);
+            high = glm::max(high, r.output.vertices[r.output.corners[e][k]]);
+        }
+        const bool overlaps = low.x < x1 && high.x > x0 && low.y < y1 && high.y > y0;
+        const bool inside = low.x >= x0 && high.x <= x1 && low.y >= y0 && high.y <= y1;
+        if (overlaps && !inside) {
+            ++on_edge;
+            EXPECT_LE(std::max(high.x - low.x, high.y - low.y), 1.0f / 32 + 1e-4f) << low.x << ", " << low.y;
+            continue;
+        }
+        // Off the edge, corners shared with edge elements are averaged with theirs: check the
+        // element's own exact values only where it is a full element away from the edge.
+        const float size = std::max(high.x - low.x, high.y - low.y);
+        const bool near = low.x < x1 + size && high.x > x0 - size && low.y < y1 + size && high.y > y0 - size;
+        if (near) continue;
+        for (int k = 0; k < count; ++k)
+            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, inside ? 0.0 : lit, 1e-5 * lit) << low.x << ", " << low.y;
+    }
+    // The 2.2 m outline in 1/32 m elements, less the four corners that count for two sides.
+    EXPECT_GE(on_edge, std::size_t(2.2 * 32) - 4);
+    // A uniform mesh of the floor at the edge's size would have 128^2 elements.
+    EXPECT_LT(floor_elements, 128u * 128u / 10);
+}
+
 TEST(Hierarchy, CornellBoxAgreesWithTheUniformBake) {
     const auto cornell = test::cornell_box();
     BakeSettings uniform;
@@ -263,6 +339,9 @@ TEST(Hierarchy, BadSettingsAreInputErrors) {
     const auto box = test::closed_box(Vec3(1), Rgb(0.5), Rgb(1.0));
     EXPECT_THROW(bake_hierarchical(box.input(), settings(0.0f, 0.01)), InputError);
     EXPECT_THROW(bake_hierarchical(box.input(), settings(0.1f, std::nan(""))), InputError);
+    HierarchySettings detail = settings(0.1f, 0.01);
+    detail.lamp_detail_levels = -1;
+    EXPECT_THROW(bake_hierarchical(box.input(), detail), InputError);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 /// conforming leaf mesh and its corner colours (hierarchy.h).
 #include "radiosity/hierarchy.h"
 
+#include "hr_lamp_detail.h"
 #include "hr_links.h"
 #include "hr_output.h"
 #include "hr_solve.h"
@@ -27,6 +28,7 @@ void check(const HierarchySettings& s) {
         throw InputError("refine_tolerance must be positive");
     if (!(s.tolerance > 0.0)) throw InputError("tolerance must be positive");
     if (s.max_iterations < 1 || s.max_rounds < 1) throw InputError("max_iterations and max_rounds must be at least 1");
+    if (s.lamp_detail_levels < 0 || s.lamp_detail_levels > 8) throw InputError("lamp_detail_levels must be 0 to 8");
 }
 
 }  // namespace
@@ -78,14 +80,23 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     result.stats.rounds = round;
 
     start = Clock::now();
-    const std::vector<Rgb> lamp_light = hr::lamp_light(tree);
+    std::vector<Rgb> lamp_light = hr::lamp_light(tree);
+    const double scale = hr::reference_radiance(tree);
     // The links are most of the memory, and the output mesh is made after them: free them first.
     tbb::parallel_for(std::size_t(0), tree.nodes.size(),
                       [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
+    const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
+    result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
+                                                        lamp_finest, lamp_light, progress);
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
-    result.colors = interpolate_corners(result.output, result.output_radiance, input.material, settings.hard_edge_angle);
+    // The lamps' light is shown as it is at each corner; the rest of the light is interpolated
+    // from the leaves' means (hr_lamp_detail.h).
+    const std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
+    std::vector<Rgb> rest(result.output.size());
+    for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
     result.seconds_interpolate = seconds_since(start);
 
     HierarchyStats& stats = result.stats;

@@ -31,7 +31,8 @@ public:
 
     void leaf(int32_t id) {
         const Node& n = tree_.nodes[id];
-        emission_ = n.emission + n.reflectance * lamp_light_[id];
+        lamp_part_ = n.reflectance * lamp_light_[id];
+        emission_ = n.emission + lamp_part_;
         polygon_ = build_.elements.polygon[n.patch];
         take_cuts(n.patch);
         ++mesh_.leaves;
@@ -119,13 +120,14 @@ private:
         out.reflectance.push_back(n.reflectance);
         out.emission.push_back(emission_);
         mesh_.radiance.push_back(n.radiance);
+        mesh_.lamp_part.push_back(lamp_part_);
     }
 
     const Tree& tree_;
     const BuildResult& build_;
     const std::vector<Rgb>& lamp_light_;
     LeafMesh& mesh_;
-    Rgb emission_{0.0};
+    Rgb emission_{0.0}, lamp_part_{0.0};
     int32_t polygon_ = -1;
     std::unordered_map<uint64_t, int32_t> local_;
     std::vector<int32_t> boundary_;

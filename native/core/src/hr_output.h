@@ -9,6 +9,7 @@ namespace radiosity::hr {
 struct LeafMesh {
     Elements elements;          ///< one element per leaf, or a fan of triangles (see below)
     std::vector<Rgb> radiance;  ///< per element: its leaf's radiance
+    std::vector<Rgb> lamp_part; ///< per element: the part of that radiance the lamps gave, rho G_lamps
     std::size_t leaves = 0;
 };
 

@@ -175,10 +175,6 @@ int32_t Tree::build_cluster(int32_t begin, int32_t end, int32_t parent) {
     return id;
 }
 
-bool Tree::can_split(const Node& n) const {
-    return n.is_element() && n.longest_edge >= 2.0f * min_element_size_;
-}
-
 int32_t Tree::midpoint(int32_t a, int32_t b) {
     const auto key = std::minmax(a, b);
     std::lock_guard<std::mutex> lock(midpoint_lock_);
@@ -212,11 +208,11 @@ void Tree::fill_element(Node& n, const Node& parent) {
     for (int k = 0; k < count; ++k) n.radius = std::max(n.radius, glm::length(c[k] - n.centre));
 }
 
-bool Tree::subdivide(int32_t e) {
+bool Tree::subdivide(int32_t e, float finest) {
     std::lock_guard<std::mutex> lock(split_locks_[static_cast<std::size_t>(e) % split_locks_.size()]);
     Node& n = nodes[e];
     if (n.child_count > 0) return true;
-    if (!can_split(n)) return false;
+    if (!can_split(n, finest)) return false;
     if (leaves_.fetch_add(3) + 3 > max_leaves_) {
         leaves_ -= 3;
         cap_reached_ = true;

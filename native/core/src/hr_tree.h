@@ -149,13 +149,16 @@ public:
     float scene_size = 0.0f;                ///< bounding box diagonal, metres
 
     /// Splits element `e` into four (once; safe to call from several threads). Returns false when
-    /// it is too small to split (its longest edge is below the minimum element size).
-    bool subdivide(int32_t e);
+    /// it is too small to split (its children's longest edges would be below `finest`, by default
+    /// the minimum element size) or the leaf cap is reached.
+    bool subdivide(int32_t e) { return subdivide(e, min_element_size_); }
+    bool subdivide(int32_t e, float finest);
     /// What a cluster or element emits, as a point source (intensity(), hr_links.h).
     Emitter emitter(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster] : element_emitter(n); }
     /// Its emitter's power alone (S = sum L A).
     Rgb power(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster].power : element_power(n); }
-    bool can_split(const Node& n) const;
+    bool can_split(const Node& n) const { return can_split(n, min_element_size_); }
+    bool can_split(const Node& n, float finest) const { return n.is_element() && n.longest_edge >= 2.0f * finest; }
     float min_element_size() const { return min_element_size_; }
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
     int32_t midpoint(int32_t a, int32_t b);

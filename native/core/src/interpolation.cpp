@@ -168,10 +168,16 @@ private:
     std::vector<bool> cut_weld_;  ///< welds at the end of a cut edge
 };
 
-Rgb mean_radiance(const Slots& slots, int32_t s, const std::vector<Rgb>& radiance) {
+/// The mean of `value_of(slot)` over the slots of S.
+template <typename ValueOf>
+Rgb set_mean(const Slots& slots, int32_t s, ValueOf value_of) {
     Rgb sum(0.0);
-    for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t) sum += radiance[Slots::element_of(*t)];
+    for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t) sum += value_of(*t);
     return sum / double(slots.set_end(s) - slots.set_begin(s));
+}
+
+Rgb mean_radiance(const Slots& slots, int32_t s, const std::vector<Rgb>& radiance) {
+    return set_mean(slots, s, [&](int32_t t) { return radiance[Slots::element_of(t)]; });
 }
 
 /// Samples for a border slot's plane: element centres with their radiance, interior corners with
@@ -335,7 +341,8 @@ void join_hanging_vertices(const Elements& elements, const Slots& slots, std::ve
 }  // namespace
 
 CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
-                                 const int32_t* material, float hard_edge_angle) {
+                                 const int32_t* material, float hard_edge_angle,
+                                 const std::vector<Rgb>* corner_light) {
     const Slots slots(elements, material, hard_edge_angle);
     const std::size_t n = elements.size();
     std::vector<Rgb> value(4 * n, Rgb(0.0));
@@ -349,6 +356,12 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
             const int32_t s = Slots::slot(e, k);
             if (slots.border(s)) value[s] = extrapolate(elements, slots, s, radiance, value);
         }
+    if (corner_light)
+        for (std::size_t e = 0; e < n; ++e)
+            for (int k = 0; k < slots.corner_count(e); ++k) {
+                const int32_t s = Slots::slot(e, k);
+                value[s] += set_mean(slots, s, [&](int32_t t) { return (*corner_light)[t]; });
+            }
 
     CornerColors colors;
     colors.element_corner.resize(4 * n);

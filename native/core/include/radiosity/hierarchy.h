@@ -26,6 +26,12 @@
 /// to the leaves, radiance pulled up as area means), then refines every link whose error is
 /// now too large; rounds stop when no link changed and the solve has converged, or when the
 /// nodes and links reached `max_bytes`.
+///
+/// Output: the lamps' light (point, spot, sun) is known exactly at any point, one shadow ray per
+/// lamp, so each output corner shows it as it is there, plus the rest of the light interpolated
+/// from the leaves' means; after the solve, leaves split further (up to `lamp_detail_levels`
+/// times) where the lamps' light inside them departs from what their corners show by more than
+/// the refinement threshold: a lamp's sharp shadow gets a fine edge without fine links.
 #pragma once
 
 #include "radiosity/interpolation.h"
@@ -52,11 +58,15 @@ struct HierarchySettings {
     /// twice that): pairs stop splitting once it is reached. 0: no cap.
     std::size_t max_bytes = 0;
     Lights lights;                   ///< point and spot lamps and suns: sources of links
+    /// How many times more than down to `min_element_size` a leaf may split where the lamps'
+    /// light needs it (their shadows' edges): its finest elements are min_element_size / 2^this.
+    int lamp_detail_levels = 2;
 };
 
 struct HierarchyStats {
     std::size_t patches = 0, clusters = 0, leaves = 0, nodes = 0, links = 0, rays = 0;
     std::size_t bytes = 0;           ///< nodes and links held at the end (the bulk of the memory)
+    std::size_t lamp_splits = 0;     ///< leaves split after the solve for the lamps' light
     int rounds = 0, iterations = 0;
     bool leaf_cap_reached = false;   ///< refinement stopped early at ElementLimits::max_elements
     bool memory_cap_reached = false; ///< refinement stopped early at HierarchySettings::max_bytes

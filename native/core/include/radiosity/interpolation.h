@@ -21,7 +21,12 @@ struct CornerColors {
 };
 
 /// `material` is SceneInput::material (may be null), `hard_edge_angle` in radians.
+/// `corner_light` (optional, 4 per element): light known at each element corner itself (the
+/// lamps', evaluated there), added to the corners interpolated from `radiance` as its mean over
+/// the elements that share the corner's colour, so that a smooth surface's shared corners keep
+/// one value.
 CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
-                                 const int32_t* material, float hard_edge_angle);
+                                 const int32_t* material, float hard_edge_angle,
+                                 const std::vector<Rgb>* corner_light = nullptr);
 
 }  // namespace radiosity
