@@ -106,6 +106,48 @@ def test_operator_refines_where_the_light_changes_and_copies_have_no_cracks():
     assert np.median(error) < 0.01 and error.max() < 0.05, (np.median(error), error.max())
 
 
+def test_a_lamps_shadow_is_sharp_on_coarse_elements():
+    # Elements of 25 cm: the lamp's light shows as it is at every corner of the copy, and only
+    # the faces along the card's shadow split further (twice, to 6.25 cm) after the solve.
+    floor = floor_under_lamp()
+    settings = bpy.context.scene.radiosity
+    settings.quality = "CUSTOM"
+    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.25, 0.02
+    settings.target = "COPIES"
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}, settings.last_report
+
+    mesh = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name).data
+    colors = harness.corner_colors(mesh, "Radiosity")
+    loop_vertex = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", loop_vertex)
+    vertices = np.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", vertices)
+    points = vertices.reshape(-1, 3)[loop_vertex]
+    # The card (x 0.2 to 0.4, |y| < 0.1, half-way up) shades x 0.4 to 0.8, |y| < 0.2; nothing else
+    # lights the floor (the card is black), so every corner is the lamp's light alone.
+    shadowed = (points[:, 0] > 0.4) & (points[:, 0] < 0.8) & (np.abs(points[:, 1]) < 0.2)
+    r2 = (points[:, 0] ** 2 + points[:, 1] ** 2 + LAMP_HEIGHT ** 2)
+    exact = np.where(shadowed, 0.0, RHO * 10.0 / (4.0 * math.pi) * LAMP_HEIGHT / np.sqrt(r2) / (math.pi * r2))
+    error = np.abs(colors[:, 0] - exact) / exact.max()
+    print("%d faces; corners against rho I cos / (pi r^2): worst %.2e of the brightest" % (len(mesh.polygons),
+                                                                                       error.max()))
+    assert error.max() < 1e-4, error.max()
+
+    # Faces across the shadow's outline are 6.25 cm or finer; the rest stay coarse.
+    starts = np.array([p.loop_start for p in mesh.polygons])
+    counts = np.array([p.loop_total for p in mesh.polygons])
+    crossing = 0
+    for start, count in zip(starts, counts):
+        inside = shadowed[start:start + count]
+        if inside.any() and not inside.all():
+            crossing += 1
+            extent = np.ptp(points[start:start + count, :2], axis=0).max()
+            assert extent <= 0.0625 + 1e-4, extent
+    assert crossing >= 2 * (0.4 + 0.4) / 0.0625, crossing  # the 1.6 m outline
+    # A uniform mesh at 6.25 cm would have 32 x 32 faces.
+    assert len(mesh.polygons) < 0.5 * 32 ** 2, len(mesh.polygons)
+
+
 def test_batch_command_bakes_hierarchically():
     floor_under_lamp()
     path = os.path.join(args.work, "hierarchical.blend")
@@ -227,6 +269,6 @@ def test_fog_refuses_the_method_and_changes_nothing():
 
 
 harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
-            test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
+            test_a_lamps_shadow_is_sharp_on_coarse_elements, test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
             test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit,
             test_esc_while_the_hierarchy_refines_changes_nothing, test_fog_refuses_the_method_and_changes_nothing)
