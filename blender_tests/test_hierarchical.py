@@ -58,17 +58,21 @@ def boundary_length(mesh):
     return float(lengths[users == 1].sum())
 
 
-def test_operator_refines_where_the_light_changes_and_copies_have_no_cracks():
+def bake_floor_copy(element_size, refine_tolerance):
+    """The floor under the lamp baked hierarchically by the operator (Custom quality, the panel's
+    Element Size and Refinement) into a subdivided copy; returns the copy's mesh."""
     floor = floor_under_lamp()
     settings = bpy.context.scene.radiosity
     settings.quality = "CUSTOM"
-    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.01, 0.01
+    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", element_size, refine_tolerance
     settings.target = "COPIES"
-    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}, settings.last_report
     assert "hierarchical" in settings.last_report and "leaves" in settings.last_report, settings.last_report
+    return next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name).data
 
-    copy = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name)
-    mesh = copy.data
+
+def test_operator_refines_where_the_light_changes_and_copies_have_no_cracks():
+    mesh = bake_floor_copy(0.01, 0.01)
     # No cracks: the elements' outline is the face's own, 8 m (a T-vertex would add length).
     assert math.isclose(boundary_length(mesh), 8.0, rel_tol=1e-5), boundary_length(mesh)
     # No seams: every vertex carries one colour, whatever element's corner it is.
@@ -109,14 +113,7 @@ def test_operator_refines_where_the_light_changes_and_copies_have_no_cracks():
 def test_a_lamps_shadow_is_sharp_on_coarse_elements():
     # Elements of 25 cm: the lamp's light shows as it is at every corner of the copy, and only
     # the faces along the card's shadow split further (twice, to 6.25 cm) after the solve.
-    floor = floor_under_lamp()
-    settings = bpy.context.scene.radiosity
-    settings.quality = "CUSTOM"
-    settings.method, settings.element_size, settings.refine_tolerance = "HIERARCHICAL", 0.25, 0.02
-    settings.target = "COPIES"
-    assert bpy.ops.radiosity.bake() == {"FINISHED"}, settings.last_report
-
-    mesh = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name).data
+    mesh = bake_floor_copy(0.25, 0.02)
     colors = harness.corner_colors(mesh, "Radiosity")
     loop_vertex = np.empty(len(mesh.loops), dtype=np.int64)
     mesh.loops.foreach_get("vertex_index", loop_vertex)

@@ -28,6 +28,7 @@ struct AccuracyCase {
     std::vector<HierarchySeries> series;
     std::vector<double> refine_tolerances;
     float reference_size;
+    int reference_resolution;  ///< the uniform reference's hemi-cube (cornell_wall_means: 256 aliases there)
     float sample_spacing;
 };
 
@@ -78,7 +79,40 @@ Baked bake_hierarchy(const LitScene& scene, float min_size, int lamp_levels, dou
     return b;
 }
 
+/// Area-weighted mean of (r + g + b) / 3 over each of the first `count` input polygons.
+std::vector<double> polygon_means(const Elements& mesh, const std::vector<Rgb>& radiance, int count) {
+    std::vector<double> power(count, 0.0), area(count, 0.0);
+    for (std::size_t e = 0; e < mesh.size(); ++e) {
+        if (mesh.polygon[e] >= count) continue;
+        power[mesh.polygon[e]] += mesh.area[e] * (radiance[e].r + radiance[e].g + radiance[e].b) / 3.0;
+        area[mesh.polygon[e]] += mesh.area[e];
+    }
+    for (int p = 0; p < count; ++p) power[p] /= area[p];
+    return power;
+}
+
 }  // namespace
+
+void cornell_wall_means() {
+    const LitScene scene{test::cornell_box(), {}, 0.0f};
+    const int walls = 6;  // floor, ceiling and the four walls come first
+    auto print = [&](const char* method, double parameter, const Baked& b) {
+        std::printf("%-9s %-6g %6.1f s ", method, parameter, b.seconds);
+        for (double mean : polygon_means(b.mesh, b.radiance, walls)) std::printf(" %.5f", mean);
+        std::printf("\n");
+        std::fflush(stdout);
+    };
+    std::printf("method    param   seconds   mean radiance of polygons 0-%d\n", walls - 1);
+    for (float size : {0.05f, 0.025f})
+        for (int resolution : {128, 256, 512}) {
+            std::printf("uniform %.3f m, ", size);
+            print("hemicube", resolution, bake_uniform(scene, size, resolution, 1e-6));
+        }
+    for (double tolerance : {0.005, 0.002}) {
+        std::printf("hierarchy 0.025 m, ");
+        print("refine", tolerance, bake_hierarchy(scene, 0.025f, 0, tolerance, 1e-6, 12));
+    }
+}
 
 void accuracy(const std::string& csv_path) {
     // Hierarchy series: leaves down to the size of the finest uniform mesh the old charts had
@@ -87,10 +121,10 @@ void accuracy(const std::string& csv_path) {
     std::vector<AccuracyCase> cases;
     cases.push_back({"cornell", {test::cornell_box(), {}, 0.0f}, {0.2f, 0.1f, 0.07f, 0.05f},
                      {{"hierarchy", 0.05f, 2}, {"hierarchy_coarse", 0.2f, 4}}, {0.2, 0.1, 0.05, 0.02, 0.01}, 0.025f,
-                     0.004f});
+                     512, 0.004f});
     cases.push_back({"shadow_room", shadow_room(), {0.4f, 0.2f, 0.14f, 0.1f, 0.07f, 0.05f},
                      {{"hierarchy", 0.1f, 2}, {"hierarchy_coarse", 0.4f, 4}}, {0.2, 0.1, 0.05, 0.02, 0.01}, 0.05f,
-                     0.01f});
+                     256, 0.01f});
     std::ofstream csv(csv_path);
     csv << "scene,method,parameter,min_size,lamp_levels,elements,output_elements,links,seconds,rms,max,"
            "rms_vs_uniform_ref,max_vs_uniform_ref,unlocated\n";
@@ -100,13 +134,13 @@ void accuracy(const std::string& csv_path) {
         std::size_t unlocated = 0;
         auto colours = [&](const Baked& b) { return colours_at(samples, b.mesh, b.corners, unlocated); };
         // Two references by different methods, each finer than any run's links: the hierarchy at
-        // a quarter of the default tolerance and the uniform mesh at hemi-cube resolution 256,
+        // a quarter of the default tolerance and the uniform mesh at a fine hemi-cube resolution,
         // both solved tightly. Each stands for the light without the lamps' first reflection;
         // that is taken exactly at every sample (reference_colours), for both alike.
         const Baked h_ref = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
         const std::vector<Rgb> lamp = lamp_light_at(samples, h_ref.mesh, c.scene.lights);
         const auto h_colours = reference_colours(samples, h_ref.mesh, h_ref.radiance, input.material, lamp);
-        const Baked u_ref = bake_uniform(c.scene, c.reference_size, 256, 1e-6);
+        const Baked u_ref = bake_uniform(c.scene, c.reference_size, c.reference_resolution, 1e-6);
         const auto u_colours = reference_colours(samples, u_ref.mesh, u_ref.radiance, input.material, lamp);
         auto row = [&](const std::string& method, double parameter, float min_size, int lamp_levels, const Baked& b,
                        const std::vector<Rgb>& got) {

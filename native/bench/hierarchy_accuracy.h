@@ -9,4 +9,8 @@ namespace radiosity::charts {
 
 void accuracy(const std::string& csv_path);
 
+/// The Cornell box's mean radiance per wall from the uniform bake at hemi-cube resolutions 128,
+/// 256 and 512 and from the hierarchy at two tolerances: how far the references can be trusted.
+void cornell_wall_means();
+
 }  // namespace radiosity::charts
