@@ -58,8 +58,8 @@ struct HierarchySettings {
     /// twice that): pairs stop splitting once it is reached. 0: no cap.
     std::size_t max_bytes = 0;
     Lights lights;                   ///< point and spot lamps and suns: sources of links
-    /// How many times more than down to `min_element_size` a leaf may split where the lamps'
-    /// light needs it (their shadows' edges): its finest elements are min_element_size / 2^this.
+    /// Leaves may split this many levels below `min_element_size` after the solve where the
+    /// lamps' light needs it (along their shadows' edges): the finest are min_element_size / 2^this.
     int lamp_detail_levels = 2;
 };
 

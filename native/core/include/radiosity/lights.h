@@ -45,8 +45,9 @@ float spot_profile(const PointLight& light, const Vec3& direction_from_light);
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress = {});
 
 /// Irradiance at points on surfaces (each facing its unit normal), exact: I profile cos / r^2 or a
-/// sun's irradiance times cos, from every lamp one shadow ray against `surfaces` (both sides
-/// occlude) shows. What the hierarchical bake puts at its output corners; the charts' truth.
+/// sun's irradiance times cos, from every lamp in front of the point that one shadow ray against
+/// `surfaces` (both sides occlude) finds unhidden. What the hierarchical bake shows at its output
+/// corners; the accuracy charts' truth.
 std::vector<Rgb> lamp_irradiance_at(const Elements& surfaces, const Lights& lights, const std::vector<Vec3>& points,
                                     const std::vector<Vec3>& normals);
 
