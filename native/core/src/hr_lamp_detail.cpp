@@ -14,8 +14,14 @@
 namespace radiosity::hr {
 namespace {
 
-/// Corners are evaluated this share of the way towards their element's centre.
-constexpr float kInside = 1e-4f;
+/// A corner moved a hair (1e-4 of the way) towards its element's centre: the element's own side
+/// of a shadow edge or contact line through the corner.
+Vec3 inside(const Vec3& corner, const Vec3& centre) { return corner + 1e-4f * (centre - corner); }
+
+/// The lamps' light gathered at `x` (E / pi: radiance per unit reflectance).
+Rgb lamp_light_at(const Lights& lights, const Visibility& visibility, const Vec3& x, const Vec3& normal) {
+    return detail::lamp_irradiance(lights, visibility, x, normal) / M_PI;
+}
 
 using CornerWeights = std::array<float, 4>;
 
@@ -60,7 +66,7 @@ public:
         std::array<Vec3, 4> c;
         const int count = element_corners(tree_, n, c);
         std::array<Rgb, 4> at_corner{};
-        for (int k = 0; k < count; ++k) at_corner[k] = gathered(n, c[k] + kInside * (n.centre - c[k]));
+        for (int k = 0; k < count; ++k) at_corner[k] = gathered(n, inside(c[k], n.centre));
         Examined e;
         const auto& grid = grid_weights(count == 3);
         const double rho = max_channel(n.reflectance);
@@ -100,9 +106,7 @@ public:
     tbb::concurrent_vector<std::pair<int32_t, Rgb>> own_lamp_light;
 
 private:
-    Rgb gathered(const Node& n, const Vec3& x) const {
-        return detail::lamp_irradiance(tree_.lights, visibility_, x, n.normal) / M_PI;
-    }
+    Rgb gathered(const Node& n, const Vec3& x) const { return lamp_light_at(tree_.lights, visibility_, x, n.normal); }
 
     Tree& tree_;
     const Visibility& visibility_;
@@ -138,9 +142,8 @@ std::vector<Rgb> lamp_light_at_corners(const Elements& mesh, const Lights& light
     detail::parallel_rows("output", mesh.size(), 256, 0, progress, [&](std::size_t e) {
         if (!(max_channel(mesh.reflectance[e]) > 0.0)) return true;
         for (int k = 0; k < (mesh.is_triangle(e) ? 3 : 4); ++k) {
-            const Vec3& v = mesh.vertices[mesh.corners[e][k]];
-            const Vec3 x = v + kInside * (mesh.centre[e] - v);
-            light[4 * e + k] = mesh.reflectance[e] * detail::lamp_irradiance(lights, visibility, x, mesh.normal[e]) / M_PI;
+            const Vec3 x = inside(mesh.vertices[mesh.corners[e][k]], mesh.centre[e]);
+            light[4 * e + k] = mesh.reflectance[e] * lamp_light_at(lights, visibility, x, mesh.normal[e]);
         }
         return true;
     });
