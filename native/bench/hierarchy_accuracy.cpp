@@ -139,9 +139,10 @@ void accuracy(const std::string& csv_path) {
         // that is taken exactly at every sample (reference_colours), for both alike.
         const Baked h_ref = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
         const std::vector<Rgb> lamp = lamp_light_at(samples, h_ref.mesh, c.scene.lights);
-        const auto h_colours = reference_colours(samples, h_ref.mesh, h_ref.radiance, input.material, lamp);
+        std::size_t h_unlocated = 0, u_unlocated = 0;
+        const auto h_colours = reference_colours(samples, h_ref.mesh, h_ref.radiance, input.material, lamp, h_unlocated);
         const Baked u_ref = bake_uniform(c.scene, c.reference_size, c.reference_resolution, 1e-6);
-        const auto u_colours = reference_colours(samples, u_ref.mesh, u_ref.radiance, input.material, lamp);
+        const auto u_colours = reference_colours(samples, u_ref.mesh, u_ref.radiance, input.material, lamp, u_unlocated);
         auto row = [&](const std::string& method, double parameter, float min_size, int lamp_levels, const Baked& b,
                        const std::vector<Rgb>& got) {
             const ColourError e = colour_error(samples, got, h_colours);
@@ -156,7 +157,9 @@ void accuracy(const std::string& csv_path) {
             std::fflush(stdout);
         };
         std::printf("%s: %zu samples\n", c.name.c_str(), samples.point.size());
+        unlocated = u_unlocated;
         row("reference_uniform", c.reference_size, c.reference_size, 0, u_ref, u_colours);
+        unlocated = h_unlocated;
         row("reference_hierarchy", 0.005, c.reference_size, 0, h_ref, h_colours);
         for (float size : c.sizes) {
             const Baked b = bake_uniform(c.scene, size, 128, 1e-4);

@@ -207,11 +207,11 @@ std::vector<Rgb> lamp_light_at(const Samples& samples, const Elements& surfaces,
 }
 
 std::vector<Rgb> reference_colours(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& radiance,
-                                   const int32_t* material, const std::vector<Rgb>& lamp_light) {
+                                   const int32_t* material, const std::vector<Rgb>& lamp_light,
+                                   std::size_t& unlocated) {
     std::vector<Rgb> rest(mesh.size());
     for (std::size_t e = 0; e < mesh.size(); ++e) rest[e] = radiance[e] - mesh.emission[e];
     const CornerColors corners = interpolate_corners(mesh, rest, material, HierarchySettings().hard_edge_angle);
-    std::size_t unlocated = 0;
     std::vector<Rgb> colours = colours_at(samples, mesh, corners.element_corner, unlocated);
     for (std::size_t i = 0; i < colours.size(); ++i) colours[i] += lamp_light[i];
     return colours;

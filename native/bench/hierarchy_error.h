@@ -39,8 +39,10 @@ std::vector<Rgb> lamp_light_at(const Samples& samples, const Elements& surfaces,
 /// minus the elements' emission, which holds that reflection; emitters are not sampled),
 /// interpolated to its corners and read at the samples, plus the lamps' exact light there.
 /// Interpolated element means blur a lamp's sharp shadow over an element; the truth has none.
+/// `unlocated` as for colours_at.
 std::vector<Rgb> reference_colours(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& radiance,
-                                   const int32_t* material, const std::vector<Rgb>& lamp_light);
+                                   const int32_t* material, const std::vector<Rgb>& lamp_light,
+                                   std::size_t& unlocated);
 
 struct ColourError {
     double rms = 0.0;  ///< area-weighted RMS of the colour difference / reference's mean radiance
