@@ -4,6 +4,7 @@
 
 hierarchy_scaling.csv  -> hierarchy_scaling.png, hierarchy_scaling_fit.txt     time, memory, links against triangles
 hierarchy_accuracy.csv -> hierarchy_accuracy.png, hierarchy_accuracy_ratios.txt  error against elements
+hierarchy_oracle.csv   -> drawn on hierarchy_accuracy.png; the most any bake could save, in the ratios
 """
 import csv
 import math
@@ -68,7 +69,32 @@ def uniform_elements_at(error, uniform):
     return math.exp(math.log(n0) + t * math.log(n1 / n0)), " (extrapolated)"
 
 
-def accuracy(rows, png, txt):
+def oracle_elements_at(error, curve):
+    """The oracle's elements at this error: log-log interpolation between its rounds."""
+    for (n0, e0), (n1, e1) in zip(curve, curve[1:]):
+        if e1 <= error <= e0 and e0 != e1:
+            t = math.log(error / e0) / math.log(e1 / e0)
+            return math.exp(math.log(n0) + t * math.log(n1 / n0))
+    return float("nan")
+
+
+def oracle_bounds(scene, uniform, oracle):
+    """Per uniform run: the oracle's elements at its RMS, and how many times fewer that is."""
+    out = [f"{scene}, oracle (the truth exact at the corners, elements placed by the truth's error) at each "
+           f"uniform run's rms: uniform size, uniform elements, rms, then per split: oracle elements, "
+           f"uniform / oracle"]
+    splits = sorted({r["split"] for r in oracle if r["scene"] == scene})
+    for size, elements, error in uniform:
+        cells = []
+        for split in splits:
+            curve = [(int(r["elements"]), float(r["rms"])) for r in oracle if r["scene"] == scene and r["split"] == split]
+            equal = oracle_elements_at(error, curve)
+            cells.append(f"{split} {equal:8.0f} {elements / equal:6.2f}")
+        out.append(f"  {size:>6} {elements:>8} {error:.4f}   " + "   ".join(cells))
+    return out
+
+
+def accuracy(rows, png, txt, oracle):
     scenes = sorted({r["scene"] for r in rows})
     fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 5), squeeze=False)
     axes = axes[0]
@@ -88,7 +114,15 @@ def accuracy(rows, png, txt):
             for r in hier:
                 ax.annotate(r["parameter"], (int(r["elements"]), float(r["rms"])), textcoords="offset points",
                             xytext=(3, 3), fontsize=7)
+        for split in sorted({r["split"] for r in oracle if r["scene"] == scene}):
+            curve = [r for r in oracle if r["scene"] == scene and r["split"] == split]
+            ax.loglog([int(r["elements"]) for r in curve], [float(r["rms"]) for r in curve], color="grey",
+                      linestyle=":" if split == "quadtree" else "-.", label=f"oracle, {split} (the truth at the corners)")
         agree = next(r for r in mine if r["method"] == "reference_uniform")
+        ax.axhline(float(agree["rms"]), color="grey", linewidth=0.8, label="the two references' difference")
+        # Below the references' difference the oracle only retraces the reference's own mesh.
+        lowest = min(float(r["rms"]) for r in mine if r["method"] in methods or r["method"] == "uniform")
+        ax.set_ylim(bottom=min(lowest, float(agree["rms"])) / 2)
         ax.set_title(f"{scene} (references differ by rms {float(agree['rms']):.3f})")
         ax.set_xlabel("elements")
         ax.set_ylabel("RMS colour error / mean radiance")
@@ -105,6 +139,9 @@ def accuracy(rows, png, txt):
                     out.append(f"  {r['parameter']:>6} {int(r['elements']):>8} {int(r['output_elements']):>8} "
                                f"{float(r[column]):.4f} {equal:>10.0f} {equal / int(r['elements']):6.2f} "
                                f"{equal / int(r['output_elements']):6.2f}{note}")
+        if oracle:
+            out += oracle_bounds(scene, [(r["parameter"], int(r["elements"]), float(r["rms"])) for r in mine
+                                         if r["method"] == "uniform"], oracle)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     with open(txt, "w") as f:
@@ -117,7 +154,11 @@ def main(folder):
         path = os.path.join(folder, name + ".csv")
         if os.path.exists(path) and read(path):
             suffix = "_fit.txt" if plot is scaling else "_ratios.txt"
-            plot(read(path), os.path.join(folder, name + ".png"), os.path.join(folder, name + suffix))
+            extra = ()
+            if plot is accuracy:
+                oracle = os.path.join(folder, "hierarchy_oracle.csv")
+                extra = (read(oracle) if os.path.exists(oracle) else [],)
+            plot(read(path), os.path.join(folder, name + ".png"), os.path.join(folder, name + suffix), *extra)
 
 
 if __name__ == "__main__":

@@ -12,34 +12,6 @@
 namespace radiosity::charts {
 namespace {
 
-/// A series of hierarchical bakes: leaves down to `min_size`, lamp detail `lamp_levels` finer.
-struct HierarchySeries {
-    std::string method;
-    float min_size;
-    int lamp_levels;
-};
-
-/// One scene's runs: uniform element sizes, hierarchy series over refine tolerances, and the
-/// size the two references bake at.
-struct AccuracyCase {
-    std::string name;
-    LitScene scene;
-    std::vector<float> sizes;
-    std::vector<HierarchySeries> series;
-    std::vector<double> refine_tolerances;
-    float reference_size;
-    int reference_resolution;  ///< the uniform reference's hemi-cube (cornell_wall_means: 256 aliases there)
-    float sample_spacing;
-};
-
-/// A bake's mesh, radiance and corner colours, how big it is and how long it took.
-struct Baked {
-    Elements mesh;
-    std::vector<Rgb> radiance, corners;
-    std::size_t elements = 0, output_elements = 0, links = 0;
-    double seconds = 0.0;
-};
-
 Baked bake_uniform(const LitScene& scene, float size, int resolution, double tolerance) {
     BakeSettings s;
     s.element_size = size;
@@ -56,6 +28,20 @@ Baked bake_uniform(const LitScene& scene, float size, int resolution, double tol
     b.corners = std::move(r.colors.element_corner);
     return b;
 }
+
+/// Area-weighted mean of (r + g + b) / 3 over each of the first `count` input polygons.
+std::vector<double> polygon_means(const Elements& mesh, const std::vector<Rgb>& radiance, int count) {
+    std::vector<double> power(count, 0.0), area(count, 0.0);
+    for (std::size_t e = 0; e < mesh.size(); ++e) {
+        if (mesh.polygon[e] >= count) continue;
+        power[mesh.polygon[e]] += mesh.area[e] * (radiance[e].r + radiance[e].g + radiance[e].b) / 3.0;
+        area[mesh.polygon[e]] += mesh.area[e];
+    }
+    for (int p = 0; p < count; ++p) power[p] /= area[p];
+    return power;
+}
+
+}  // namespace
 
 Baked bake_hierarchy(const LitScene& scene, float min_size, int lamp_levels, double refine_tolerance, double tolerance,
                      int rounds) {
@@ -79,20 +65,6 @@ Baked bake_hierarchy(const LitScene& scene, float min_size, int lamp_levels, dou
     return b;
 }
 
-/// Area-weighted mean of (r + g + b) / 3 over each of the first `count` input polygons.
-std::vector<double> polygon_means(const Elements& mesh, const std::vector<Rgb>& radiance, int count) {
-    std::vector<double> power(count, 0.0), area(count, 0.0);
-    for (std::size_t e = 0; e < mesh.size(); ++e) {
-        if (mesh.polygon[e] >= count) continue;
-        power[mesh.polygon[e]] += mesh.area[e] * (radiance[e].r + radiance[e].g + radiance[e].b) / 3.0;
-        area[mesh.polygon[e]] += mesh.area[e];
-    }
-    for (int p = 0; p < count; ++p) power[p] /= area[p];
-    return power;
-}
-
-}  // namespace
-
 void cornell_wall_means() {
     const LitScene scene{test::cornell_box(), {}, 0.0f};
     const int walls = 6;  // floor, ceiling and the four walls come first
@@ -114,7 +86,7 @@ void cornell_wall_means() {
     }
 }
 
-void accuracy(const std::string& csv_path) {
+std::vector<AccuracyCase> accuracy_cases() {
     // Hierarchy series: leaves down to the size of the finest uniform mesh the old charts had
     // (lamp detail two levels finer), and leaves four times coarser with lamp detail four levels
     // finer: the same finest lamp detail from far fewer links.
@@ -125,6 +97,11 @@ void accuracy(const std::string& csv_path) {
     cases.push_back({"shadow_room", shadow_room(), {0.4f, 0.2f, 0.14f, 0.1f, 0.07f, 0.05f},
                      {{"hierarchy", 0.1f, 2}, {"hierarchy_coarse", 0.4f, 4}}, {0.2, 0.1, 0.05, 0.02, 0.01}, 0.05f,
                      256, 0.01f});
+    return cases;
+}
+
+void accuracy(const std::string& csv_path) {
+    const std::vector<AccuracyCase> cases = accuracy_cases();
     std::ofstream csv(csv_path);
     csv << "scene,method,parameter,min_size,lamp_levels,elements,output_elements,links,seconds,rms,max,"
            "rms_vs_uniform_ref,max_vs_uniform_ref,unlocated\n";

@@ -4,8 +4,10 @@
 ///   radiosity_hierarchy_charts scaling OUTPUT_DIR [TRIANGLES ...]  scaling.csv (+ cancel test)
 ///   radiosity_hierarchy_charts accuracy OUTPUT_DIR                 hierarchy_accuracy.csv
 ///   radiosity_hierarchy_charts bake_one TRIANGLES [CANCEL_SECONDS]  one scaling bake (the child)
+///   radiosity_hierarchy_charts oracle OUTPUT_DIR                   hierarchy_oracle.csv
 ///   radiosity_hierarchy_charts cornell_walls                        the references' wall means
 #include "hierarchy_accuracy.h"
+#include "hierarchy_oracle.h"
 #include "hierarchy_scaling.h"
 
 #include <cstdio>
@@ -31,11 +33,15 @@ int main(int argc, char** argv) {
         cornell_wall_means();
         return 0;
     }
+    if (command == "oracle" && argc > 2) {
+        oracle(std::string(argv[2]) + "/hierarchy_oracle.csv");
+        return 0;
+    }
     if (command == "accuracy" && argc > 2) {
         accuracy(std::string(argv[2]) + "/hierarchy_accuracy.csv");
         return 0;
     }
-    std::fprintf(stderr, "usage: %s scaling|accuracy OUTPUT_DIR [TRIANGLES ...] | bake_one TRIANGLES [CANCEL_SECONDS] | "
+    std::fprintf(stderr, "usage: %s scaling|accuracy|oracle OUTPUT_DIR [TRIANGLES ...] | bake_one TRIANGLES [CANCEL_SECONDS] | "
                  "cornell_walls\n",
                  argv[0]);
     return 2;
