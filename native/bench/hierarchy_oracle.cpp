@@ -36,7 +36,8 @@ Vec3 centre_of(const Cell& c) {
 
 float longest_edge(const Cell& c) {
     float longest = 0.0f;
-    for (int k = 0; k < c.count; ++k) longest = std::max(longest, glm::length(c.corner[(k + 1) % c.count] - c.corner[k]));
+    for (int k = 0; k < c.count; ++k)
+        longest = std::max(longest, glm::length(c.corner[(k + 1) % c.count] - c.corner[k]));
     return longest;
 }
 
@@ -249,7 +250,8 @@ void oracle(const std::string& csv_path) {
                     for (std::size_t k = 0; k + 1 < starts[s].size(); ++k) {
                         double error = 0.0;
                         for (std::size_t t = starts[s][k]; t < starts[s][k + 1]; ++t) error += trial[t].error;
-                        const double gain = (cells[chosen[s]].error - error) / double(starts[s][k + 1] - starts[s][k] - 1);
+                        const double added = double(starts[s][k + 1] - starts[s][k] - 1);
+                        const double gain = (cells[chosen[s]].error - error) / added;
                         if (gain > most) {
                             most = gain;
                             best = k;

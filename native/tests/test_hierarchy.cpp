@@ -157,6 +157,51 @@ TEST(Hierarchy, LampLightAtTheCornersIsExactOnACoarseMesh) {
         }
 }
 
+/// Form factor from a point to a parallel a x b rectangle at height c, the point under one of
+/// its corners (Howell's catalogue, B-11).
+double point_under_rectangle_corner(double a, double b, double c) {
+    const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
+    return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * M_PI);
+}
+
+TEST(Hierarchy, EmitterLightAtTheCornersFollowsThePointFactor) {
+    // A 1 m floor under a 1 m emitting square 0.5 m up, each one leaf: the floor's corners see
+    // the emitter at half the factor its centre does. Its one leaf's mean interpolated to the
+    // corners would show them twice too bright; each corner shows rho L F(corner) instead.
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
+    scene.add_quad({0, 0, 0.5f}, {0, 1, 0.5f}, {1, 1, 0.5f}, {1, 0, 0.5f}, Rgb(0.0), Rgb(1.0));
+    const HierarchyResult r = bake_hierarchical(scene.input(), settings(0.6f, 0.01));  // 1 m cannot split
+    ASSERT_EQ(r.output.size(), 2u);
+    const double corner = 0.5 * point_under_rectangle_corner(1, 1, 0.5);
+    const double mean = r.output_radiance[0].r;
+    EXPECT_GT(mean, 1.8 * corner);  // what the leaf's mean alone would show
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(r.colors.element_corner[k].r, corner, 1e-3 * corner) << "corner " << k;
+}
+
+TEST(Hierarchy, EmitterShadowAtTheCornersIsTracedFromEachCorner) {
+    // A 2 x 1 m floor, one leaf; an emitter 0.5 m over its left half; a black card across the
+    // middle, 1 cm clear of the floor. The floor's link sees the emitter partly (its rays split);
+    // from each corner the emitter is all in view (x = 0) or all hidden (x = 2), and the corners
+    // show exactly that: rho L F at the left, nothing at the right.
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, Rgb(0.5));
+    scene.add_quad({-0.3f, 0, 0.5f}, {-0.3f, 1, 0.5f}, {0.9f, 1, 0.5f}, {0.9f, 0, 0.5f}, Rgb(0.0), Rgb(1.0));
+    scene.add_quad({1, -1, 0.01f}, {1, 2, 0.01f}, {1, 2, 1}, {1, -1, 1}, Rgb(0.0));
+    const HierarchyResult r = bake_hierarchical(scene.input(), settings(1.05f, 0.01));
+    ASSERT_EQ(r.output.polygon[0], 0);
+    ASSERT_FALSE(r.output.is_triangle(0));
+    ASSERT_TRUE(r.output.size() == 1 || r.output.polygon[1] != 0);  // the floor is one element
+    const double lit = 0.5 * (point_under_rectangle_corner(0.3, 1, 0.5) + point_under_rectangle_corner(0.9, 1, 0.5));
+    const double mean = r.output_radiance[0].r;
+    EXPECT_GT(mean, 0.2 * lit);  // the floor's leaf gathers some of the emitter's light
+    for (int k = 0; k < 4; ++k) {
+        const Vec3 corner = r.output.vertices[r.output.corners[0][k]];
+        const double exact = corner.x < 1 ? lit : 0.0;
+        EXPECT_NEAR(r.colors.element_corner[k].r, exact, 1e-3 * lit) << "corner at x = " << corner.x;
+    }
+}
+
 TEST(Hierarchy, LampShadowEdgeIsResolvedWithoutFinerLinks) {
     // The sun of the test above over a floor of 0.5 m tiles, a 0.5 x 0.6 m card 0.5 m up: leaves
     // split down to 0.25 m, then after the solve three levels further (to 1/32 m) only where the

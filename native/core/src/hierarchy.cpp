@@ -3,6 +3,7 @@
 /// conforming leaf mesh and its corner colours (hierarchy.h).
 #include "radiosity/hierarchy.h"
 
+#include "hr_gather.h"
 #include "hr_lamp_detail.h"
 #include "hr_links.h"
 #include "hr_output.h"
@@ -82,20 +83,22 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     start = Clock::now();
     std::vector<Rgb> lamp_light = hr::lamp_light(tree);
     const double scale = hr::reference_radiance(tree);
-    // The links are most of the memory, and the output mesh is made after them: free them first.
-    tbb::parallel_for(std::size_t(0), tree.nodes.size(),
-                      [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
     const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
     result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
                                                         lamp_finest, lamp_light, progress);
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
-    // The lamps' light is shown as it is at each corner; the rest of the light is interpolated
-    // from the leaves' means (hr_lamp_detail.h).
-    const std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
+    // The lamps' light is shown as it is at each corner, and the links' light as their geometry
+    // shapes it there; the rest (light pushed down from clusters) is interpolated from the
+    // leaves' means (hr_lamp_detail.h, hr_gather.h).
+    std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
     std::vector<Rgb> rest(result.output.size());
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    hr::gather_at_corners(tree, visibility, result.output, mesh.leaf, rest, corner_light, progress);
+    // The links are most of the memory: gone before the corner colours' welding and sets.
+    tbb::parallel_for(std::size_t(0), tree.nodes.size(),
+                      [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
     result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
     result.seconds_interpolate = seconds_since(start);
 

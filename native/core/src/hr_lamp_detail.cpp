@@ -14,10 +14,6 @@
 namespace radiosity::hr {
 namespace {
 
-/// A corner moved a hair (1e-4 of the way) towards its element's centre: the element's own side
-/// of a shadow edge or contact line through the corner.
-Vec3 inside(const Vec3& corner, const Vec3& centre) { return corner + 1e-4f * (centre - corner); }
-
 /// The lamps' light gathered at `x` (E / pi: radiance per unit reflectance).
 Rgb lamp_light_at(const Lights& lights, const Visibility& visibility, const Vec3& x, const Vec3& normal) {
     return detail::lamp_irradiance(lights, visibility, x, normal) / M_PI;

@@ -31,6 +31,7 @@ public:
 
     void leaf(int32_t id) {
         const Node& n = tree_.nodes[id];
+        leaf_ = id;
         lamp_part_ = n.reflectance * lamp_light_[id];
         emission_ = n.emission + lamp_part_;
         polygon_ = build_.elements.polygon[n.patch];
@@ -121,6 +122,7 @@ private:
         out.emission.push_back(emission_);
         mesh_.radiance.push_back(n.radiance);
         mesh_.lamp_part.push_back(lamp_part_);
+        mesh_.leaf.push_back(leaf_);
     }
 
     const Tree& tree_;
@@ -128,7 +130,7 @@ private:
     const std::vector<Rgb>& lamp_light_;
     LeafMesh& mesh_;
     Rgb emission_{0.0}, lamp_part_{0.0};
-    int32_t polygon_ = -1;
+    int32_t leaf_ = -1, polygon_ = -1;
     std::unordered_map<uint64_t, int32_t> local_;
     std::vector<int32_t> boundary_;
     std::vector<std::pair<Vec3, Vec3>> cuts_;

@@ -10,6 +10,7 @@ struct LeafMesh {
     Elements elements;          ///< one element per leaf, or a fan of triangles (see below)
     std::vector<Rgb> radiance;  ///< per element: its leaf's radiance
     std::vector<Rgb> lamp_part; ///< per element: the part of that radiance the lamps gave, rho G_lamps
+    std::vector<int32_t> leaf;  ///< per element: its leaf's node (a fan's elements follow each other)
     std::size_t leaves = 0;
 };
 

@@ -197,4 +197,8 @@ int element_probes(const Tree& tree, const Node& n, std::array<Vec3, 5>& points)
 /// Corner positions of an element.
 int element_corners(const Tree& tree, const Node& n, std::array<Vec3, 4>& corners);
 
+/// A corner moved a hair (1e-4 of the way) towards its element's centre: the element's own side
+/// of a shadow edge or contact line through the corner, and off any polygon edge there.
+inline Vec3 inside(const Vec3& corner, const Vec3& centre) { return corner + 1e-4f * (centre - corner); }
+
 }  // namespace radiosity::hr

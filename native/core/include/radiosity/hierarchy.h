@@ -28,10 +28,14 @@
 /// nodes and links reached `max_bytes`.
 ///
 /// Output: the lamps' light (point, spot, sun) is known exactly at any point, one shadow ray per
-/// lamp, so each output corner shows it as it is there, plus the rest of the light interpolated
-/// from the leaves' means; after the solve, leaves split further (up to `lamp_detail_levels`
-/// times) where the lamps' light inside them departs from what their corners show by more than
-/// the refinement threshold: a lamp's sharp shadow gets a fine edge without fine links.
+/// lamp, so each output corner shows it as it is there; after the solve, leaves split further
+/// (up to `lamp_detail_levels` times) where the lamps' light inside them departs from what their
+/// corners show by more than the refinement threshold: a lamp's sharp shadow gets a fine edge
+/// without fine links. The light of the other links (emitting and reflecting polygons, clusters)
+/// is evaluated at each corner too: each link's geometry (point-to-polygon factor, cos / r^2)
+/// and, where its source was partly hidden, rays from the corner shape its mean there. What is
+/// left (light pushed down from clusters, and patches smaller than `min_element_size`) is
+/// interpolated from the leaves' means.
 #pragma once
 
 #include "radiosity/interpolation.h"
