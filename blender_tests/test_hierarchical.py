@@ -145,6 +145,45 @@ def test_a_lamps_shadow_is_sharp_on_coarse_elements():
     assert len(mesh.polygons) < 0.5 * 32 ** 2, len(mesh.polygons)
 
 
+def point_under_rectangle_corner(a, b, c):
+    """Form factor from a point to a parallel a x b rectangle c above it, the point under one of
+    its corners (Howell's catalogue, B-11)."""
+    A, B = a / c, b / c
+    sa, sb = math.sqrt(1 + A * A), math.sqrt(1 + B * B)
+    return (A / sa * math.atan(B / sa) + B / sb * math.atan(A / sb)) / (2 * math.pi)
+
+
+def test_an_emitting_faces_light_and_shadow_are_exact_at_coarse_corners():
+    # A 2 x 1 m floor, a 1.2 x 1 m emitting face 0.5 m over its left half and a black card across
+    # its middle, 1 cm clear of it: the emitter is all in view from the floor's left corners and
+    # all hidden from its right ones. With elements as large as the faces, the copy's corners
+    # show rho L F at the left and nothing at the right, where the face's mean would show one
+    # colour at all four.
+    scenes.clear_scene()
+    floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (2, 0, 0), (0, 1, 0), 1, 1) + (0,)],
+                               [scenes.diffuse("Floor", (RHO, RHO, RHO))])
+    scenes.mesh_object("Emitter", [scenes.grid((-0.3, 0, 0.5), (0, 1, 0), (1.2, 0, 0), 1, 1) + (0,)],
+                       [scenes.emission("Emitter", (1.0, 1.0, 1.0), 1.0)])
+    scenes.mesh_object("Card", [scenes.grid((1, -1, 0.01), (0, 3, 0), (0, 0, 0.99), 1, 1) + (0,)],
+                       [scenes.diffuse("Card", (0.0, 0.0, 0.0))])
+    settings = bpy.context.scene.radiosity
+    settings.quality, settings.method, settings.target = "CUSTOM", "HIERARCHICAL", "COPIES"
+    settings.element_size, settings.refine_tolerance = 1.05, 0.01  # no face can split
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}, settings.last_report
+    mesh = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == floor.name).data
+    assert len(mesh.polygons) == 1, len(mesh.polygons)
+    colors = harness.corner_colors(mesh, "Radiosity")
+    loop_vertex = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", loop_vertex)
+    vertices = np.empty(3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", vertices)
+    x = vertices.reshape(-1, 3)[loop_vertex, 0]
+    lit = RHO * (point_under_rectangle_corner(0.3, 1, 0.5) + point_under_rectangle_corner(0.9, 1, 0.5))
+    exact = np.where(x < 1, lit, 0.0)
+    print("corners", colors[:, 0], "exact", exact)
+    assert np.abs(colors[:, 0] - exact).max() < 1e-3 * lit, colors[:, 0]
+
+
 def test_batch_command_bakes_hierarchically():
     floor_under_lamp()
     path = os.path.join(args.work, "hierarchical.blend")
@@ -266,6 +305,8 @@ def test_fog_refuses_the_method_and_changes_nothing():
 
 
 harness.run(test_operator_refines_where_the_light_changes_and_copies_have_no_cracks,
-            test_a_lamps_shadow_is_sharp_on_coarse_elements, test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
+            test_a_lamps_shadow_is_sharp_on_coarse_elements,
+            test_an_emitting_faces_light_and_shadow_are_exact_at_coarse_corners,
+            test_batch_command_bakes_hierarchically, test_batch_command_keeps_the_hierarchy_within_the_memory_budget,
             test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit,
             test_esc_while_the_hierarchy_refines_changes_nothing, test_fog_refuses_the_method_and_changes_nothing)

@@ -86,6 +86,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
     result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
                                                         lamp_finest, lamp_light, progress);
+    hr::free_links_not_gathered(tree);  // most of the memory, before the output mesh is made
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
@@ -96,7 +97,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     std::vector<Rgb> rest(result.output.size());
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
     hr::gather_at_corners(tree, visibility, result.output, mesh.leaf, rest, corner_light, progress);
-    // The links are most of the memory: gone before the corner colours' welding and sets.
+    // The rest of the links, before the corner colours' welding and sets.
     tbb::parallel_for(std::size_t(0), tree.nodes.size(),
                       [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
     result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);

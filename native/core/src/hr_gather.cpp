@@ -8,6 +8,7 @@
 #include "radiosity/near_field.h"
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 
@@ -62,15 +63,16 @@ private:
     int corner_count_ = 0;
 };
 
-/// The share of an element source that `x` sees: 4 rays to jittered points on it (one per
-/// quarter), each counted with the kernel cos cos / r^2 of its ends (as the links' own fractions
-/// are, hr_links.cpp). Few, because a corner sums many links: their noise averages out.
+/// The share of an element source that `x` sees: rays to `grid` x `grid` jittered points on it,
+/// each counted with the kernel cos cos / r^2 of its ends (as the links' own fractions are,
+/// hr_links.cpp).
 double visible_from(const Tree& tree, const Visibility& visibility, const Vec3& x, const Vec3& normal,
-                    const Node& source, uint32_t seed) {
+                    const Node& source, int grid, uint32_t seed) {
     std::array<Vec3, 4> to;
-    jittered_points(tree, source, 2, seed, to.data());
+    jittered_points(tree, source, grid, seed, to.data());
     double seen = 0.0, total = 0.0;
-    for (const Vec3& q : to) {
+    for (int k = 0; k < grid * grid; ++k) {
+        const Vec3& q = to[k];
         const Vec3 d = q - x;
         const double d2 = glm::dot(d, d);
         const double kernel =
@@ -97,11 +99,15 @@ bool is_lamp(const Node& n) { return n.kind == Kind::PointLamp || n.kind == Kind
 void gather_at_corners(const Tree& tree, const Visibility& visibility, const Elements& mesh,
                        const std::vector<int32_t>& leaf, std::vector<Rgb>& rest, std::vector<Rgb>& corner_light,
                        const ProgressFn& progress) {
-    const std::vector<LeafRange> ranges = leaf_ranges(leaf);
-    detail::parallel_rows("output", ranges.size(), 64, 0, progress, [&](std::size_t i) {
+    std::vector<LeafRange> ranges = leaf_ranges(leaf);
+    ranges.erase(std::remove_if(ranges.begin(), ranges.end(),
+                                [&](const LeafRange& r) {
+                                    return !(max_channel(mesh.reflectance[r.begin]) > 0.0) ||
+                                           !resolved(tree, leaf[r.begin]);
+                                }),
+                 ranges.end());
+    detail::parallel_rows("output", ranges.size(), 16, 0, progress, [&](std::size_t i) {
         const LeafRange range = ranges[i];
-        if (!(max_channel(mesh.reflectance[range.begin]) > 0.0)) return true;
-        if (!resolved(tree, leaf[range.begin])) return true;
         // The vertices of the leaf's output elements (a fan's centre and edge vertices once),
         // each a hair inside the leaf; `point_of` per element corner.
         const Node& leaf_node = tree.nodes[leaf[range.begin]];
@@ -153,11 +159,14 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
                 continue;
             }
             // A partly hidden element source: how much of it each corner sees, by its own rays.
+            // One ray per corner, as a corner sums many such links and their noise averages
+            // out; four for a link that brings a sixteenth of the leaf's light or more.
             const double visible =
                 source.is_element() ? link->factor / (over_receiver * shape.factor_scale()) : 1.0;
             const bool partial = visible > 0.0 && visible < 0.98 && resolved(tree, link->source);
+            const int grid = max_channel(value) >= max_channel(mean) / 16.0 ? 2 : 1;
             for (std::size_t p = 0; p < points.size(); ++p) {
-                const double seen = partial ? visible_from(tree, visibility, points[p], receiver->normal, source,
+                const double seen = partial ? visible_from(tree, visibility, points[p], receiver->normal, source, grid,
                                                            uint32_t(link->source) * 2654435761U + uint32_t(p)) /
                                                   visible
                                             : 1.0;
@@ -171,6 +180,13 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
                 corner_light[4 * e + k] += mesh.reflectance[e] * at_point[point_of[corner++]];
         }
         return true;
+    });
+}
+
+void free_links_not_gathered(Tree& tree) {
+    tbb::parallel_for(std::size_t(0), tree.nodes.size(), [&](std::size_t n) {
+        if (!tree.nodes[n].is_element() || !resolved(tree, int32_t(n)))
+            std::vector<Link>().swap(tree.nodes[n].links);
     });
 }
 

@@ -14,7 +14,7 @@ namespace radiosity::hr {
 /// cos / r^2. Each output element's corner takes each of its leaf's and that leaf's ancestors'
 /// links as factor x source x (the geometry at the corner / its mean over the receiver's Gauss
 /// points, over which the factor was taken), and where the link's rays found the source partly
-/// hidden, x (the share 4 rays from the corner see / the link's). So an emitter's light and
+/// hidden, x (the share rays from the corner see / the link's). So an emitter's light and
 /// shadow are right at every corner of a coarse leaf, and a leaf near a bright wall shows the
 /// gradient across it.
 ///
@@ -29,5 +29,10 @@ namespace radiosity::hr {
 void gather_at_corners(const Tree& tree, const Visibility& visibility, const Elements& mesh,
                        const std::vector<int32_t>& leaf, std::vector<Rgb>& rest, std::vector<Rgb>& corner_light,
                        const ProgressFn& progress);
+
+/// Frees the links gather_at_corners will not read: clusters' and those of patches below the
+/// resolved scale. At 10^6 triangles they are most of the bake's memory (the room's walls keep
+/// theirs).
+void free_links_not_gathered(Tree& tree);
 
 }  // namespace radiosity::hr
