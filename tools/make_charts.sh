@@ -39,13 +39,15 @@ step_native() {
   /usr/bin/python3 "$charts/plot_native.py" "$charts"
 }
 
-# The hierarchy (docs/hierarchy.md): accuracy per element against the uniform mesh on two scenes,
-# then time and peak memory against triangle count, each bake in its own process, and a 1e6
-# triangle bake cancelled after 20 s. About 25 minutes on 2 cores (35 when they are busy), most of
-# them the shadow room's uniform reference (24,580 elements at 5 cm, solved to 1e-6).
+# The hierarchy (docs/hierarchy.md): accuracy per element against the uniform mesh on two scenes
+# and the oracle's bound, then time and peak memory against triangle count, each bake in its own
+# process, and a 1e6 triangle bake cancelled after 20 s. About 25 minutes on 2 cores (35 when they
+# are busy), most of them the shadow room's uniform reference (24,580 elements at 5 cm, solved to
+# 1e-6).
 step_hierarchy() {
   cmake --build "$build" -j "$(nproc)" --target radiosity_hierarchy_charts >/dev/null
   "$build/native/bench/radiosity_hierarchy_charts" accuracy "$charts"
+  "$build/native/bench/radiosity_hierarchy_charts" oracle "$charts"
   "$build/native/bench/radiosity_hierarchy_charts" scaling "$charts"
   /usr/bin/python3 "$charts/plot_hierarchy.py" "$charts"
 }

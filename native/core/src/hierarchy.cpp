@@ -13,10 +13,22 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <cmath>
 
 namespace radiosity {
 namespace {
+
+/// Freed link lists stay in the allocator's heap, counted in the process's memory; hands them
+/// back to the system, so that the output stage's arrays do not come on top of them (at 10^6
+/// triangles that was the bake's peak: 4.0 GB, where the links phase peaks at 3.6).
+void return_freed_memory() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -83,10 +95,12 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     start = Clock::now();
     std::vector<Rgb> lamp_light = hr::lamp_light(tree);
     const double scale = hr::reference_radiance(tree);
+    // Most of the memory, before lamp detail grows the nodes and the output mesh is made.
+    hr::free_links_not_gathered(tree);
+    return_freed_memory();
     const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
     result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
                                                         lamp_finest, lamp_light, progress);
-    hr::free_links_not_gathered(tree);  // most of the memory, before the output mesh is made
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
@@ -100,6 +114,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     // The rest of the links, before the corner colours' welding and sets.
     tbb::parallel_for(std::size_t(0), tree.nodes.size(),
                       [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
+    return_freed_memory();
     result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
     result.seconds_interpolate = seconds_since(start);
 
