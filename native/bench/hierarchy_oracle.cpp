@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <numeric>
 
 namespace radiosity::charts {
 namespace {
@@ -50,6 +51,20 @@ Location locate(const Cell& c, const Vec3& p) {
     return c.count == 3 ? locate_triangle(q, at) : locate_quad(q, at);
 }
 
+/// Of the cells `candidates` names, the one that holds `point` (the least outside it).
+std::size_t holder(const std::vector<Cell>& cells, const std::vector<std::size_t>& candidates, const Vec3& point) {
+    std::size_t best = candidates.front();
+    double outside = std::numeric_limits<double>::infinity();
+    for (std::size_t k : candidates) {
+        const double o = locate(cells[k], point).outside;
+        if (o < outside) {
+            outside = o;
+            best = k;
+        }
+    }
+    return best;
+}
+
 /// A cell cut into children with the given corners, the parent's samples shared out.
 std::vector<Cell> cut(const Cell& parent, const std::vector<std::vector<Vec3>>& corners, const Samples& samples) {
     std::vector<Cell> children(corners.size());
@@ -60,18 +75,9 @@ std::vector<Cell> cut(const Cell& parent, const std::vector<std::vector<Vec3>>& 
         children[i].normal = parent.normal;
         children[i].reflectance = parent.reflectance;
     }
-    for (uint32_t i : parent.samples) {
-        std::size_t best = 0;
-        double outside = std::numeric_limits<double>::infinity();
-        for (std::size_t k = 0; k < children.size(); ++k) {
-            const double o = locate(children[k], samples.point[i]).outside;
-            if (o < outside) {
-                outside = o;
-                best = k;
-            }
-        }
-        children[best].samples.push_back(i);
-    }
+    std::vector<std::size_t> all(children.size());
+    std::iota(all.begin(), all.end(), std::size_t(0));
+    for (uint32_t i : parent.samples) children[holder(children, all, samples.point[i])].samples.push_back(i);
     return children;
 }
 
@@ -116,12 +122,22 @@ std::vector<std::vector<Cell>> candidate_splits(const Cell& c, bool binary, cons
     return splits;
 }
 
-/// The truth at the corners of cells [first, end), each corner a hair inside its cell so that one
-/// on a contact line or a shadow edge takes its own side; then each cell's error at its samples.
-void take_truth(std::vector<Cell>& cells, std::size_t first, const Baked& reference, const LitScene& scene,
-                const SceneInput& input, const Samples& samples, const std::vector<Rgb>& truth) {
+/// The chart's truth: the hierarchy reference's light without the lamps', interpolated, plus the
+/// lamps' exact light (reference_colours), at the samples and at any other points.
+struct Truth {
+    const LitScene& scene;
+    const SceneInput& input;
+    const Samples& samples;
+    const Baked& reference;
+    std::vector<Rgb> at_samples;
+};
+
+/// The truth at the corners of `cells`, each corner a hair inside its cell so that one on a
+/// contact line or a shadow edge takes its own side; then each cell's error at its samples.
+void take_truth(std::vector<Cell>& cells, const Truth& truth) {
+    const Samples& samples = truth.samples;
     Samples corners;
-    for (std::size_t c = first; c < cells.size(); ++c) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
         const Vec3 centre = centre_of(cells[c]);
         for (int k = 0; k < cells[c].count; ++k) {
             corners.point.push_back(cells[c].corner[k] + 1e-4f * (centre - cells[c].corner[k]));
@@ -131,12 +147,13 @@ void take_truth(std::vector<Cell>& cells, std::size_t first, const Baked& refere
             corners.reflectance.push_back(cells[c].reflectance);
         }
     }
-    const std::vector<Rgb> lamp = lamp_light_at(corners, reference.mesh, scene.lights);
+    const Baked& reference = truth.reference;
+    const std::vector<Rgb> lamp = lamp_light_at(corners, reference.mesh, truth.scene.lights);
     std::size_t unlocated = 0;
     const std::vector<Rgb> value =
-        reference_colours(corners, reference.mesh, reference.radiance, input.material, lamp, unlocated);
+        reference_colours(corners, reference.mesh, reference.radiance, truth.input.material, lamp, unlocated);
     std::size_t next = 0;
-    for (std::size_t c = first; c < cells.size(); ++c) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
         Cell& cell = cells[c];
         for (int k = 0; k < cell.count; ++k) cell.value[k] = value[next++];
         cell.error = 0.0;
@@ -144,7 +161,7 @@ void take_truth(std::vector<Cell>& cells, std::size_t first, const Baked& refere
             const Location l = locate(cell, samples.point[i]);
             Rgb got(0.0);
             for (int k = 0; k < cell.count; ++k) got += l.weight[k] * cell.value[k];
-            const Rgb d = got - truth[i];
+            const Rgb d = got - truth.at_samples[i];
             cell.error += samples.weight[i] * glm::dot(d, d) / 3.0;
         }
     }
@@ -181,19 +198,56 @@ std::size_t patch_cells(const SceneInput& input, const Samples& samples, std::ve
         cells_of[cell.polygon].push_back(cells.size());
         cells.push_back(cell);
     }
-    for (uint32_t i = 0; i < samples.point.size(); ++i) {
+    for (uint32_t i = 0; i < samples.point.size(); ++i)
+        cells[holder(cells, cells_of[samples.polygon[i]], samples.point[i])].samples.push_back(i);
+    return emitters;
+}
+
+/// One round: the tenth of the cells that err most (squared error summed over their samples),
+/// down to two sample spacings, each split the way that removes the most error per element it
+/// adds. Returns false when no cell may split.
+bool split_worst(std::vector<Cell>& cells, bool binary, const Truth& truth, float spacing) {
+    std::vector<std::size_t> chosen;
+    for (std::size_t k = 0; k < cells.size(); ++k)
+        if (cells[k].samples.size() >= 4 && longest_edge(cells[k]) > 2.0f * spacing) chosen.push_back(k);
+    if (chosen.empty()) return false;
+    const std::size_t take = std::min(chosen.size(), std::max<std::size_t>(1, cells.size() / 10));
+    std::nth_element(chosen.begin(), chosen.begin() + (take - 1), chosen.end(),
+                     [&](std::size_t a, std::size_t b) { return cells[a].error > cells[b].error; });
+    chosen.resize(take);
+    // Every candidate's children take the truth together: [starts[s][k], starts[s][k + 1]) of
+    // `trial` are chosen cell s's candidate k.
+    std::vector<Cell> trial;
+    std::vector<std::vector<std::size_t>> starts(chosen.size());
+    for (std::size_t s = 0; s < chosen.size(); ++s)
+        for (std::vector<Cell>& children : candidate_splits(cells[chosen[s]], binary, truth.samples)) {
+            starts[s].push_back(trial.size());
+            for (Cell& child : children) trial.push_back(std::move(child));
+        }
+    take_truth(trial, truth);
+    std::vector<Cell> kept;
+    for (std::size_t s = 0; s < chosen.size(); ++s) {
+        starts[s].push_back(s + 1 < chosen.size() ? starts[s + 1].front() : trial.size());
         std::size_t best = 0;
-        double outside = std::numeric_limits<double>::infinity();
-        for (std::size_t k : cells_of[samples.polygon[i]]) {
-            const double o = locate(cells[k], samples.point[i]).outside;
-            if (o < outside) {
-                outside = o;
+        double most = -std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k + 1 < starts[s].size(); ++k) {
+            double error = 0.0;
+            for (std::size_t t = starts[s][k]; t < starts[s][k + 1]; ++t) error += trial[t].error;
+            const double gain = (cells[chosen[s]].error - error) / double(starts[s][k + 1] - starts[s][k] - 1);
+            if (gain > most) {
+                most = gain;
                 best = k;
             }
         }
-        cells[best].samples.push_back(i);
+        for (std::size_t t = starts[s][best]; t < starts[s][best + 1]; ++t) kept.push_back(std::move(trial[t]));
     }
-    return emitters;
+    std::sort(chosen.rbegin(), chosen.rend());
+    for (std::size_t k : chosen) {
+        cells[k] = std::move(cells.back());
+        cells.pop_back();
+    }
+    for (Cell& child : kept) cells.push_back(std::move(child));
+    return true;
 }
 
 }  // namespace
@@ -206,66 +260,23 @@ void oracle(const std::string& csv_path) {
         const Samples samples = sample_polygons(input, c.sample_spacing);
         const Baked reference = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
         std::size_t unlocated = 0;
-        const std::vector<Rgb> truth =
-            reference_colours(samples, reference.mesh, reference.radiance, input.material,
-                              lamp_light_at(samples, reference.mesh, c.scene.lights), unlocated);
+        const Truth truth{c.scene, input, samples, reference,
+                          reference_colours(samples, reference.mesh, reference.radiance, input.material,
+                                            lamp_light_at(samples, reference.mesh, c.scene.lights), unlocated)};
         for (bool binary : {false, true}) {
+            const char* split = binary ? "anisotropic" : "quadtree";
             std::vector<Cell> cells;
             const std::size_t emitters = patch_cells(input, samples, cells);
-            take_truth(cells, 0, reference, c.scene, input, samples, truth);
-            // Each round splits the tenth of the cells that err most (squared error summed over
-            // their samples), down to two sample spacings, each the way that errs least.
+            take_truth(cells, truth);
+            // Until past 40,000 elements (the finest uniform run has 24,580).
             for (int round = 0;; ++round) {
-                const ColourError e = colour_error(samples, colours_of(cells, samples), truth);
-                const char* split = binary ? "anisotropic" : "quadtree";
+                const ColourError e = colour_error(samples, colours_of(cells, samples), truth.at_samples);
                 csv << c.name << "," << split << "," << round << "," << cells.size() + emitters << "," << e.rms << ","
                     << e.max << "\n" << std::flush;
-                std::printf("%-12s %-8s round %2d: %7zu elements  rms %.4f  max %.3f\n", c.name.c_str(), split, round,
-                            cells.size() + emitters, e.rms, e.max);
+                std::printf("%-12s %-11s round %2d: %7zu elements  rms %.4f  max %.3f\n", c.name.c_str(), split,
+                            round, cells.size() + emitters, e.rms, e.max);
                 std::fflush(stdout);
-                std::vector<std::size_t> chosen;
-                for (std::size_t k = 0; k < cells.size(); ++k)
-                    if (cells[k].samples.size() >= 4 && longest_edge(cells[k]) > 2.0f * c.sample_spacing)
-                        chosen.push_back(k);
-                if (chosen.empty() || cells.size() > 40000) break;
-                const std::size_t take = std::min(chosen.size(), std::max<std::size_t>(1, cells.size() / 10));
-                std::nth_element(chosen.begin(), chosen.begin() + (take - 1), chosen.end(),
-                                 [&](std::size_t a, std::size_t b) { return cells[a].error > cells[b].error; });
-                chosen.resize(take);
-                // Every candidate's children take the truth together; each cell keeps its best.
-                std::vector<Cell> trial;
-                std::vector<std::vector<std::size_t>> starts(chosen.size());
-                for (std::size_t s = 0; s < chosen.size(); ++s)
-                    for (std::vector<Cell>& children : candidate_splits(cells[chosen[s]], binary, samples)) {
-                        starts[s].push_back(trial.size());
-                        for (Cell& child : children) trial.push_back(std::move(child));
-                    }
-                take_truth(trial, 0, reference, c.scene, input, samples, truth);
-                std::vector<Cell> added;
-                for (std::size_t s = 0; s < chosen.size(); ++s) {
-                    starts[s].push_back(s + 1 < chosen.size() ? starts[s + 1].front() : trial.size());
-                    // The split that removes the most error per element it adds.
-                    std::size_t best = 0;
-                    double most = -std::numeric_limits<double>::infinity();
-                    for (std::size_t k = 0; k + 1 < starts[s].size(); ++k) {
-                        double error = 0.0;
-                        for (std::size_t t = starts[s][k]; t < starts[s][k + 1]; ++t) error += trial[t].error;
-                        const double added = double(starts[s][k + 1] - starts[s][k] - 1);
-                        const double gain = (cells[chosen[s]].error - error) / added;
-                        if (gain > most) {
-                            most = gain;
-                            best = k;
-                        }
-                    }
-                    for (std::size_t t = starts[s][best]; t < starts[s][best + 1]; ++t)
-                        added.push_back(std::move(trial[t]));
-                }
-                std::sort(chosen.rbegin(), chosen.rend());
-                for (std::size_t k : chosen) {
-                    cells[k] = std::move(cells.back());
-                    cells.pop_back();
-                }
-                for (Cell& child : added) cells.push_back(std::move(child));
+                if (cells.size() > 40000 || !split_worst(cells, binary, truth, c.sample_spacing)) break;
             }
         }
     }

@@ -13,10 +13,10 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cmath>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
-#include <cmath>
 
 namespace radiosity {
 namespace {
@@ -105,8 +105,9 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
     // The lamps' light is shown as it is at each corner, and the links' light as their geometry
-    // shapes it there; the rest (light pushed down from clusters) is interpolated from the
-    // leaves' means (hr_lamp_detail.h, hr_gather.h).
+    // and the corner's rays shape it there; the rest (light pushed down from clusters, patches
+    // below the minimum size) is interpolated from the leaves' means (hr_lamp_detail.h,
+    // hr_gather.h).
     std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
     std::vector<Rgb> rest(result.output.size());
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];

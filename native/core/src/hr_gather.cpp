@@ -3,7 +3,6 @@
 #include "hr_gather.h"
 
 #include "hr_links.h"
-#include "hr_visibility.h"
 #include "parallel_rows.h"
 #include "radiosity/near_field.h"
 
