@@ -1,7 +1,8 @@
 """The hierarchical method through the artist's paths (the operator with the panel's settings, the
 batch command): a lamp close over a floor refines elements only near it and near the shadow,
 the baked copies have no T-vertex cracks and no colour seams, and the light matches the inverse
-square law; a block standing on the floor keeps a dark footprint and a lit floor around it. Scenes
+square law; an emitting face's light and shadow are exact at the corners of faces that cannot
+split; a block standing on the floor keeps a dark footprint and a lit floor around it. Scenes
 with fog refuse the method with a clear message and change nothing."""
 
 import math
@@ -180,7 +181,7 @@ def test_an_emitting_faces_light_and_shadow_are_exact_at_coarse_corners():
     x = vertices.reshape(-1, 3)[loop_vertex, 0]
     lit = RHO * (point_under_rectangle_corner(0.3, 1, 0.5) + point_under_rectangle_corner(0.9, 1, 0.5))
     exact = np.where(x < 1, lit, 0.0)
-    print("corners", colors[:, 0], "exact", exact)
+    print("emitter over a one-face floor: corners %s against rho L F %s" % (colors[:, 0].round(5), exact.round(5)))
     assert np.abs(colors[:, 0] - exact).max() < 1e-3 * lit, colors[:, 0]
 
 
