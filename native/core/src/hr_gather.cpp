@@ -49,10 +49,9 @@ public:
             return point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
                                     glm::dvec3(source_.normal));
         const Vec3 d = source_.centre - x;
-        const double d2 = glm::dot(d, d), towards = std::max(0.0f, glm::dot(normal_, d));
-        if (!(d2 > 0.0)) return 0.0;
-        if (source_.is_element()) return towards * std::max(0.0f, -glm::dot(source_.normal, d)) / (d2 * d2);
-        return towards / (d2 * std::sqrt(d2));
+        if (source_.is_element()) return pair_kernel(normal_, source_.normal, d);
+        const double d2 = glm::dot(d, d);
+        return d2 > 0.0 ? std::max(0.0f, glm::dot(normal_, d)) / (d2 * std::sqrt(d2)) : 0.0;
     }
 
 private:
@@ -71,14 +70,10 @@ double visible_from(const Tree& tree, const Visibility& visibility, const Vec3& 
     jittered_points(tree, source, grid, seed, to.data());
     double seen = 0.0, total = 0.0;
     for (int k = 0; k < grid * grid; ++k) {
-        const Vec3& q = to[k];
-        const Vec3 d = q - x;
-        const double d2 = glm::dot(d, d);
-        const double kernel =
-            std::max(0.0f, glm::dot(normal, d)) * std::max(0.0f, -glm::dot(source.normal, d)) / (d2 * d2);
+        const double kernel = pair_kernel(normal, source.normal, to[k] - x);
         if (!(kernel > 0.0)) continue;
         total += kernel;
-        if (visibility.clear(x, q)) seen += kernel;
+        if (visibility.clear(x, to[k])) seen += kernel;
     }
     return total > 0.0 ? seen / total : 0.0;
 }
@@ -90,8 +85,6 @@ bool resolved(const Tree& tree, int32_t element) {
         element = tree.nodes[element].parent;
     return tree.nodes[element].longest_edge >= tree.min_element_size();
 }
-
-bool is_lamp(const Node& n) { return n.kind == Kind::PointLamp || n.kind == Kind::Sun; }
 
 }  // namespace
 
@@ -133,7 +126,7 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
             const Node& receiver = tree.nodes[a];
             for (const Link& link : receiver.links) {
                 const Node& source = tree.nodes[link.source];
-                if (is_lamp(source)) continue;
+                if (source.is_lamp()) continue;
                 const Rgb strength = source.is_element() ? source.radiance
                                                          : intensity(tree, source, -towards_source(receiver, source));
                 const Rgb value = double(link.factor) * strength;
@@ -143,13 +136,18 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
             }
         }
         std::vector<Rgb> at_point(points.size(), Rgb(0.0));
+        const Node* gauss_of = nullptr;  // the links come receiver by receiver
+        std::array<Vec3, 4> gauss;
+        int gauss_count = 0;
         for (const auto& [receiver, link, value] : gathered) {
             const Node& source = tree.nodes[link->source];
+            if (receiver != gauss_of) {
+                gauss_count = element_samples(tree, *receiver, gauss);
+                gauss_of = receiver;
+            }
             // The link's factor is its geometry's mean over these points times the source's
             // visible share (hr_links.cpp).
             const Shape shape(tree, *receiver, source);
-            std::array<Vec3, 4> gauss;
-            const int gauss_count = element_samples(tree, *receiver, gauss);
             double over_receiver = 0.0;
             for (int k = 0; k < gauss_count; ++k) over_receiver += shape.at(gauss[k]);
             over_receiver /= gauss_count;

@@ -173,9 +173,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
         int hits = 0, misses = 0;
         for (int k = 0; k < rays; ++k) {
             const Vec3 &a = from[k], &b = to[(stride * k + 1) % rays];
-            const Vec3 d = b - a;
-            const float d2 = glm::dot(d, d);
-            const double kernel = d2 > 0.0f ? std::max(0.0f, glm::dot(r.normal, d)) * std::max(0.0f, -glm::dot(s.normal, d)) / (d2 * d2) : 0.0;
+            const double kernel = pair_kernel(r.normal, s.normal, b - a);
             if (!(kernel > 0.0)) continue;
             const bool clear = visibility_.clear(a, b);
             (clear ? hits : misses) += 1;
@@ -227,7 +225,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
 Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) const {
     Estimate e;
     const bool sun = s.kind == Kind::Sun;
-    if ((s.kind == Kind::PointLamp || sun) && r.kind == Kind::Cluster) {
+    if (s.is_lamp() && r.kind == Kind::Cluster) {
         // A lamp's light reaches each patch on its own link: a cluster's few sample rays would
         // miss most shadows in it, and its children would all get the same light.
         return must_split();
@@ -288,7 +286,7 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     // receiver and nothing but these rays would find a small shadow on it.
     std::vector<Vec3> from(P.begin(), P.begin() + np);
     if (r.is_element() && tree_.can_split(r)) {
-        const bool lamp_source = s.kind == Kind::PointLamp || sun;
+        const bool lamp_source = s.is_lamp();
         const int grid = lamp_source ? std::clamp(int(std::ceil(r.longest_edge / (4.0f * tree_.min_element_size()))), 4, 16) : 4;
         from.resize(std::size_t(grid) * grid);
         jittered_points(tree_, r, grid, seed, from.data());

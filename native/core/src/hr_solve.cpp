@@ -33,8 +33,6 @@ void deposit(AmbientCube& cube, const Vec3& direction, const Rgb& value) {
 /// Clusters with at least this many patches push and pull their two halves in parallel.
 constexpr int32_t kPatchesPerTask = 2048;
 
-bool is_lamp(const Node& n) { return n.kind == Kind::PointLamp || n.kind == Kind::Sun; }
-
 /// Every node sums its links (`lamps_only`: only those from lamps) into gathered or cube.
 void gather(Tree& tree, bool lamps_only = false) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tree.nodes.size(), 512), [&](const auto& range) {
@@ -44,7 +42,7 @@ void gather(Tree& tree, bool lamps_only = false) {
             if (r.kind == Kind::Cluster) tree.cubes[r.cluster] = AmbientCube{};
             for (const Link& l : r.links) {
                 const Node& s = tree.nodes[l.source];
-                if (lamps_only && !is_lamp(s)) continue;
+                if (lamps_only && !s.is_lamp()) continue;
                 if (r.is_element() && s.is_element()) {
                     r.gathered += double(l.factor) * s.radiance;
                     continue;

@@ -100,11 +100,19 @@ struct Node {
     bool is_element() const { return kind == Kind::Element; }
     bool is_leaf() const { return child_count == 0; }
     bool is_triangle() const { return corners[3] < 0; }
+    bool is_lamp() const { return kind == Kind::PointLamp || kind == Kind::Sun; }
 };
 
 /// The unit direction from `receiver` to a source it gathers from as a point (a sun: towards it).
 inline Vec3 towards_source(const Node& receiver, const Node& source) {
     return source.kind == Kind::Sun ? -source.normal : glm::normalize(source.centre - receiver.centre);
+}
+
+/// cos cos / r^2 between a point with unit normal `n` and one with unit normal `m`, `d` from the
+/// first to the second (not normalised: hence / r^4); 0 where either faces away or they meet.
+inline double pair_kernel(const Vec3& n, const Vec3& m, const Vec3& d) {
+    const float d2 = glm::dot(d, d);
+    return d2 > 0.0f ? std::max(0.0f, glm::dot(n, d)) * std::max(0.0f, -glm::dot(m, d)) / (d2 * d2) : 0.0;
 }
 
 /// An element's power: its radiance over its area.
