@@ -100,6 +100,14 @@ std::vector<AccuracyCase> accuracy_cases() {
     return cases;
 }
 
+HierarchyReference hierarchy_reference(const AccuracyCase& c, const SceneInput& input, const Samples& samples) {
+    HierarchyReference r;
+    r.baked = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
+    r.lamp = lamp_light_at(samples, r.baked.mesh, c.scene.lights);
+    r.colours = reference_colours(samples, r.baked.mesh, r.baked.radiance, input.material, r.lamp, r.unlocated);
+    return r;
+}
+
 void accuracy(const std::string& csv_path) {
     const std::vector<AccuracyCase> cases = accuracy_cases();
     std::ofstream csv(csv_path);
@@ -114,12 +122,12 @@ void accuracy(const std::string& csv_path) {
         // a quarter of the default tolerance and the uniform mesh at a fine hemi-cube resolution,
         // both solved tightly. Each stands for the light without the lamps' first reflection;
         // that is taken exactly at every sample (reference_colours), for both alike.
-        const Baked h_ref = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
-        const std::vector<Rgb> lamp = lamp_light_at(samples, h_ref.mesh, c.scene.lights);
-        std::size_t h_unlocated = 0, u_unlocated = 0;
-        const auto h_colours = reference_colours(samples, h_ref.mesh, h_ref.radiance, input.material, lamp, h_unlocated);
+        const HierarchyReference h_ref = hierarchy_reference(c, input, samples);
+        const std::vector<Rgb>& h_colours = h_ref.colours;
+        std::size_t u_unlocated = 0;
         const Baked u_ref = bake_uniform(c.scene, c.reference_size, c.reference_resolution, 1e-6);
-        const auto u_colours = reference_colours(samples, u_ref.mesh, u_ref.radiance, input.material, lamp, u_unlocated);
+        const auto u_colours =
+            reference_colours(samples, u_ref.mesh, u_ref.radiance, input.material, h_ref.lamp, u_unlocated);
         auto row = [&](const std::string& method, double parameter, float min_size, int lamp_levels, const Baked& b,
                        const std::vector<Rgb>& got) {
             const ColourError e = colour_error(samples, got, h_colours);
@@ -136,8 +144,8 @@ void accuracy(const std::string& csv_path) {
         std::printf("%s: %zu samples\n", c.name.c_str(), samples.point.size());
         unlocated = u_unlocated;
         row("reference_uniform", c.reference_size, c.reference_size, 0, u_ref, u_colours);
-        unlocated = h_unlocated;
-        row("reference_hierarchy", 0.005, c.reference_size, 0, h_ref, h_colours);
+        unlocated = h_ref.unlocated;
+        row("reference_hierarchy", 0.005, c.reference_size, 0, h_ref.baked, h_colours);
         for (float size : c.sizes) {
             const Baked b = bake_uniform(c.scene, size, 128, 1e-4);
             row("uniform", size, size, 0, b, colours(b));

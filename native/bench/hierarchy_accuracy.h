@@ -3,6 +3,7 @@
 /// Cornell box and the shadow room, against a converged fine reference.
 #pragma once
 
+#include "hierarchy_error.h"
 #include "hierarchy_scenes.h"
 #include "radiosity/scene.h"
 
@@ -46,6 +47,16 @@ std::vector<AccuracyCase> accuracy_cases();
 /// A hierarchical bake of `scene` as the chart runs it (stats, output mesh, corner colours).
 Baked bake_hierarchy(const LitScene& scene, float min_size, int lamp_levels, double refine_tolerance, double tolerance,
                      int rounds);
+
+/// The chart's truth for one case: the hierarchy reference (leaves down to the case's
+/// reference size, refine_tolerance 0.005, solved to 1e-6), the lamps' exact light at the
+/// samples, and the colours they make there together (reference_colours).
+struct HierarchyReference {
+    Baked baked;
+    std::vector<Rgb> lamp, colours;
+    std::size_t unlocated = 0;
+};
+HierarchyReference hierarchy_reference(const AccuracyCase& c, const SceneInput& input, const Samples& samples);
 
 void accuracy(const std::string& csv_path);
 

@@ -129,7 +129,7 @@ struct Truth {
     const SceneInput& input;
     const Samples& samples;
     const Baked& reference;
-    std::vector<Rgb> at_samples;
+    const std::vector<Rgb>& at_samples;
 };
 
 /// The truth at the corners of `cells`, each corner a hair inside its cell so that one on a
@@ -258,11 +258,8 @@ void oracle(const std::string& csv_path) {
     for (const AccuracyCase& c : accuracy_cases()) {
         const SceneInput input = c.scene.arrays.input();
         const Samples samples = sample_polygons(input, c.sample_spacing);
-        const Baked reference = bake_hierarchy(c.scene, c.reference_size, 0, 0.005, 1e-6, 12);
-        std::size_t unlocated = 0;
-        const Truth truth{c.scene, input, samples, reference,
-                          reference_colours(samples, reference.mesh, reference.radiance, input.material,
-                                            lamp_light_at(samples, reference.mesh, c.scene.lights), unlocated)};
+        const HierarchyReference reference = hierarchy_reference(c, input, samples);
+        const Truth truth{c.scene, input, samples, reference.baked, reference.colours};
         for (bool binary : {false, true}) {
             const char* split = binary ? "anisotropic" : "quadtree";
             std::vector<Cell> cells;
