@@ -124,13 +124,15 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
 int Refiner::cluster_samples(const Node& c, uint32_t seed, bool by_power, std::array<Vec3, 4>& points) const {
     // Each point is a patch centre reached by walking down from c, taking each child with odds
     // proportional to its power (where the light comes from) or its area (where it lands).
+    // Clusters are the nodes after the patches, and a cluster's children are clusters or patches.
+    const auto patches = static_cast<int32_t>(tree_.patch_count);
     for (int k = 0; k < 4; ++k) {
-        const Node* n = &c;
-        for (uint32_t h = mix(seed + 0x9e3779b9U * (k + 1)); n->kind == Kind::Cluster; h = mix(h)) {
-            const float first_share = by_power ? n->power_share : n->area_share;
-            n = &tree_.nodes[child(*n, h / 4294967296.0 < first_share ? 0 : 1)];
+        int32_t n = patches + c.cluster;
+        for (uint32_t h = mix(seed + 0x9e3779b9U * (k + 1)); n >= patches; h = mix(h)) {
+            const ClusterSplit& split = tree_.splits[n - patches];
+            n = split.child[h / 4294967296.0 < (by_power ? split.power_share : split.area_share) ? 0 : 1];
         }
-        points[k] = n->centre;
+        points[k] = tree_.patch_centres[n];
     }
     return 4;
 }
@@ -405,8 +407,9 @@ void Refiner::link(const Pending& pair, double threshold, Output& out, std::vect
 }
 
 std::size_t Refiner::bytes() const {
-    return tree_.nodes.size() * sizeof(Node) + tree_.cluster_count * (sizeof(Emitter) + sizeof(AmbientCube)) +
-           links_ * sizeof(Link) + tree_.vertices.size() * sizeof(Vec3);
+    const std::size_t per_cluster = sizeof(Emitter) + sizeof(AmbientCube) + sizeof(ClusterSplit);
+    return tree_.nodes.size() * sizeof(Node) + tree_.cluster_count * per_cluster + links_ * sizeof(Link) +
+           (tree_.vertices.size() + tree_.patch_count) * sizeof(Vec3);
 }
 
 bool Refiner::within_memory() {

@@ -124,7 +124,8 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             totals.total += below[k].totals.total;
         }
         for (int ch = 0; ch < 3; ++ch) emitter.moment_length[ch] = glm::length(emitter.moment[ch]);
-        n.power_share = power[0] + power[1] > 0.0 ? static_cast<float>(power[0] / (power[0] + power[1])) : n.area_share;
+        ClusterSplit& split = tree.splits[n.cluster];
+        split.power_share = power[0] + power[1] > 0.0 ? static_cast<float>(power[0] / (power[0] + power[1])) : split.area_share;
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;

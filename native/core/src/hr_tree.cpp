@@ -115,6 +115,16 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     cluster_count = nodes.size() - patch_count;
     emitters.resize(cluster_count);
     cubes.resize(cluster_count);
+    // What cluster_samples' walks read, apart from the nodes.
+    splits.resize(cluster_count);
+    patch_centres.resize(patch_count);
+    for (std::size_t p = 0; p < patch_count; ++p) patch_centres[p] = nodes[p].centre;
+    for (std::size_t k = 0; k < cluster_count; ++k) {
+        const Node& c = nodes[patch_count + k];
+        const float left = nodes[c.first_child].area, right = nodes[c.second_child].area;
+        const float share = left + right > 0.0f ? left / (left + right) : 0.5f;
+        splits[k] = {{c.first_child, c.second_child}, share, share};
+    }
 
     auto add_lamp = [&](Kind kind, std::size_t index) -> Node& {
         lamp_nodes.push_back(static_cast<int32_t>(nodes.size()));
@@ -169,9 +179,6 @@ int32_t Tree::build_cluster(int32_t begin, int32_t end, int32_t parent) {
     c.first_child = left;
     c.child_count = 2;
     c.second_child = right;
-    const float area_sum = nodes[left].area + nodes[right].area;
-    c.area_share = area_sum > 0.0f ? nodes[left].area / area_sum : 0.5f;
-    c.power_share = c.area_share;
     return id;
 }
 
