@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <map>
 
@@ -15,6 +16,10 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string dir = argv[1];
+    if (!std::filesystem::is_directory(dir)) {  // the charts would run for minutes and write nothing
+        std::fprintf(stderr, "OUTPUT_DIR '%s' is not a folder\n", dir.c_str());
+        return 2;
+    }
     const std::map<std::string, std::function<void(const std::string&)>> charts{
         {"form_factors", form_factors}, {"aliasing", aliasing}, {"convergence", convergence}, {"stability", stability}};
     std::vector<std::string> names;

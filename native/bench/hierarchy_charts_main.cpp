@@ -12,12 +12,18 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 int main(int argc, char** argv) {
     using namespace radiosity::charts;
     const std::string command = argc > 1 ? argv[1] : "";
+    const bool writes_csv = command == "scaling" || command == "oracle" || command == "accuracy";
+    if (writes_csv && argc > 2 && !std::filesystem::is_directory(argv[2])) {  // minutes of work, nothing written
+        std::fprintf(stderr, "OUTPUT_DIR '%s' is not a folder\n", argv[2]);
+        return 2;
+    }
     if (command == "bake_one" && argc > 2)
         return bake_one(std::strtoull(argv[2], nullptr, 10), argc > 3 ? std::atof(argv[3]) : 0.0);
     if (command == "scaling" && argc > 2) {
