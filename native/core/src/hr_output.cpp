@@ -2,6 +2,7 @@
 /// @brief Leaves to a conforming mesh (hr_output.h).
 #include "hr_output.h"
 
+#include "hr_conform.h"
 #include "report_progress.h"
 
 #include <glm/geometric.hpp>
@@ -39,18 +40,20 @@ public:
         ++mesh_.leaves;
         const int count = n.is_triangle() ? 3 : 4;
         boundary_.clear();
-        for (int k = 0; k < count; ++k) edge_vertices(tree_, n.corners[k], n.corners[(k + 1) % count], boundary_);
+        on_edges_.clear();
+        for (int k = 0; k < count; ++k) {
+            const std::size_t first = boundary_.size();
+            edge_vertices(tree_, n.corners[k], n.corners[(k + 1) % count], boundary_);
+            on_edges_.resize(boundary_.size(), uint8_t(1u << k));
+            on_edges_[first] |= uint8_t(1u << ((k + count - 1) % count));  // corner k also ends edge k - 1
+        }
         if (static_cast<int>(boundary_.size()) == count) {
             std::array<int32_t, 4> corners{-1, -1, -1, -1};
             for (int k = 0; k < count; ++k) corners[k] = vertex(n.corners[k]);
             add(n, corners);
             return;
         }
-        Elements& out = mesh_.elements;
-        const auto centre = static_cast<int32_t>(out.vertices.size());
-        out.vertices.push_back(n.centre);
-        for (std::size_t k = 0; k < boundary_.size(); ++k)
-            add(n, {centre, vertex(boundary_[k]), vertex(boundary_[(k + 1) % boundary_.size()]), -1});
+        split_leaf(n);
     }
 
     /// The output vertex of tree vertex `v` in the current leaf's input polygon. Each polygon has
@@ -66,6 +69,20 @@ public:
     }
 
 private:
+    /// A leaf with vertices on its edges (boundary_), in as few elements as keep them all
+    /// (hr_conform.h): neighbours then share every vertex on their common edge.
+    void split_leaf(const Node& n) {
+        points_.clear();
+        for (int32_t v : boundary_) points_.push_back(tree_.vertices[v]);
+        pieces_.clear();
+        splitter_.split(points_, on_edges_, pieces_);
+        for (const auto& piece : pieces_) {
+            std::array<int32_t, 4> corners{-1, -1, -1, -1};
+            for (int k = 0; k < (piece[3] < 0 ? 3 : 4); ++k) corners[k] = vertex(boundary_[piece[k]]);
+            add(n, corners);
+        }
+    }
+
     /// The edges of `patch` that lie on an intersection or contact line (Elements::cut_edges).
     void take_cuts(int32_t patch) {
         cuts_.clear();
@@ -132,7 +149,11 @@ private:
     Rgb emission_{0.0}, lamp_part_{0.0};
     int32_t leaf_ = -1, polygon_ = -1;
     std::unordered_map<uint64_t, int32_t> local_;
-    std::vector<int32_t> boundary_;
+    std::vector<int32_t> boundary_;    ///< the current leaf's vertices: corners and those on its edges
+    std::vector<uint8_t> on_edges_;    ///< per boundary vertex: bit k when on the leaf's edge k
+    std::vector<Vec3> points_;
+    std::vector<std::array<int32_t, 4>> pieces_;
+    LeafSplitter splitter_;
     std::vector<std::pair<Vec3, Vec3>> cuts_;
 };
 

@@ -7,17 +7,18 @@
 namespace radiosity::hr {
 
 struct LeafMesh {
-    Elements elements;          ///< one element per leaf, or a fan of triangles (see below)
+    Elements elements;          ///< one element per leaf, or a few triangles and quads (see below)
     std::vector<Rgb> radiance;  ///< per element: its leaf's radiance
     std::vector<Rgb> lamp_part; ///< per element: the part of that radiance the lamps gave, rho G_lamps
-    std::vector<int32_t> leaf;  ///< per element: its leaf's node (a fan's elements follow each other)
+    std::vector<int32_t> leaf;  ///< per element: its leaf's node (a split leaf's elements follow each other)
     std::size_t leaves = 0;
 };
 
 /// Every leaf, with the vertices its finer neighbours put on its edges: a leaf without any keeps
-/// its corners; one with some becomes a fan of triangles around its centre, so that neighbours
-/// share every vertex on their common edge (no T-vertices). Input corners map to the welded
-/// patch vertices (Elements::corner_vertex), so original meshes get their colours too.
+/// its corners; one with some is split into triangles and quads whose corners are its corners
+/// and those vertices (hr_conform.h: as few as can be, none degenerate, no new vertex), so that
+/// neighbours share every vertex on their common edge (no T-vertices). Input corners map to the
+/// welded patch vertices (Elements::corner_vertex), so original meshes get their colours too.
 /// Elements::emission holds E + rho G_lamps (`lamp_light`, per node): the lamps' first
 /// reflection counts as emitted light, as bake() counts it. Progress phase "output" (done =
 /// patches written); throws Cancelled.
