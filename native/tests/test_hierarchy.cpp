@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace radiosity {
@@ -272,15 +273,8 @@ TEST(Hierarchy, CornellBoxAgreesWithTheUniformBake) {
         EXPECT_NEAR(got.at(polygon), value, 0.04 * value) << "polygon " << polygon;
 }
 
-TEST(Hierarchy, OutputMeshHasNoTVertices) {
-    // Two polygons sharing an edge, refined differently (a lamp close to one of them): no vertex
-    // may lie inside another element's edge, so colours cannot crack.
-    test::SceneArrays scene;
-    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
-    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
-    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(0.5f, 0.5f, 0.1f)));
-    const Elements& out = r.output;
-    ASSERT_GT(out.size(), 50u);
+/// Output vertices lying strictly inside an output element's edge (T-vertices: colours crack there).
+std::size_t hanging_vertices(const Elements& out) {
     std::size_t hanging = 0;
     for (std::size_t e = 0; e < out.size(); ++e) {
         const int count = out.is_triangle(e) ? 3 : 4;
@@ -293,8 +287,102 @@ TEST(Hierarchy, OutputMeshHasNoTVertices) {
             }
         }
     }
-    EXPECT_EQ(hanging, 0u);
+    return hanging;
+}
+
+TEST(Hierarchy, OutputMeshHasNoTVertices) {
+    // Two polygons sharing an edge, refined differently (a lamp close to one of them): no vertex
+    // may lie inside another element's edge, so colours cannot crack.
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(0.5f, 0.5f, 0.1f)));
+    ASSERT_GT(r.output.size(), 50u);
+    EXPECT_EQ(hanging_vertices(r.output), 0u);
     for (const Rgb& c : r.colors.element_corner) EXPECT_TRUE(std::isfinite(c.r) && c.r >= 0.0);
+}
+
+/// Twice the area of the triangle at each corner of element `e` and its two neighbours: the
+/// smallest is 0 for a triangle of three points on a line or a quad with a flat corner.
+double smallest_corner_area(const Elements& out, std::size_t e) {
+    const int count = out.is_triangle(e) ? 3 : 4;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count; ++k) {
+        const Vec3 a = out.vertices[out.corners[e][(k + count - 1) % count]], b = out.vertices[out.corners[e][k]],
+                   c = out.vertices[out.corners[e][(k + 1) % count]];
+        smallest = std::min(smallest, double(glm::length(glm::cross(a - b, c - b))));
+    }
+    return smallest;
+}
+
+/// The output's elements per input polygon.
+std::map<int32_t, std::vector<std::size_t>> elements_by_polygon(const Elements& out) {
+    std::map<int32_t, std::vector<std::size_t>> by_polygon;
+    for (std::size_t e = 0; e < out.size(); ++e) by_polygon[out.polygon[e]].push_back(e);
+    return by_polygon;
+}
+
+/// No degenerate element, each polygon covered exactly (`areas`: the polygons' own), no T-vertex.
+void expect_conforming(const Elements& out, const std::vector<double>& areas) {
+    for (const auto& [polygon, elements] : elements_by_polygon(out)) {
+        double sum = 0.0;
+        for (std::size_t e : elements) {
+            EXPECT_GT(smallest_corner_area(out, e), 1e-3 * out.area[e]) << "element " << e;
+            sum += out.area[e];
+        }
+        EXPECT_NEAR(sum, areas[polygon], 1e-5 * areas[polygon]) << "polygon " << polygon;
+    }
+    EXPECT_EQ(hanging_vertices(out), 0u);
+}
+
+TEST(Hierarchy, LeafBesideFinerOnesSplitsIntoFewElements) {
+    // A lit square under a lamp splits once (0.5 m leaves are the finest); a black square beside
+    // it and a black triangle on top of it stay one leaf each (they reflect nothing, so nothing
+    // refines them), with the lit square's midpoint on their shared edge. Without a vertex at its
+    // centre, the square needs a quad and a triangle (a fan from its centre: 5 triangles), the
+    // triangle two triangles (a fan: 4).
+    test::SceneArrays scene;
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
+    scene.add_polygon({{1, 1, 0}, {2, 1, 0}, {1.5f, 1.8f, 0}}, Rgb(0.0), Rgb(0.0));
+    HierarchySettings s = with_lamp(settings(0.5f, 0.001), Vec3(1.5f, 0.5f, 0.5f));
+    s.lamp_detail_levels = 0;
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    ASSERT_EQ(r.stats.leaves, 6u);
+    const auto by_polygon = elements_by_polygon(r.output);
+    ASSERT_EQ(by_polygon.at(0).size(), 4u);
+    auto triangles = [&](int32_t polygon) {
+        return std::count_if(by_polygon.at(polygon).begin(), by_polygon.at(polygon).end(),
+                             [&](std::size_t e) { return r.output.is_triangle(e); });
+    };
+    EXPECT_EQ(by_polygon.at(1).size(), 2u);
+    EXPECT_EQ(triangles(1), 1);
+    EXPECT_EQ(by_polygon.at(2).size(), 2u);
+    EXPECT_EQ(triangles(2), 2);
+    expect_conforming(r.output, {1.0, 1.0, 0.4});
+}
+
+TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
+    // The black square beside a lit one refined unevenly, some levels deeper: its shared edge
+    // carries m vertices of the lit square's leaves. Each of the edge's m + 1 segments needs an
+    // element of its own (two points of the edge and one across), and m + 1 suffice: triangles to
+    // the far corners and one quad. A fan from the centre would take m + 4.
+    test::SceneArrays scene;
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
+    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
+    const auto by_polygon = elements_by_polygon(r.output);
+    std::vector<float> on_edge;  // the lit square's vertices strictly inside the shared edge x = 1
+    for (std::size_t e : by_polygon.at(0))
+        for (int k = 0; k < (r.output.is_triangle(e) ? 3 : 4); ++k) {
+            const Vec3 p = r.output.vertices[r.output.corners[e][k]];
+            if (p.x == 1.0f && p.y > 0.0f && p.y < 1.0f) on_edge.push_back(p.y);
+        }
+    std::sort(on_edge.begin(), on_edge.end());
+    const auto m = std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin());
+    ASSERT_GT(m, 8u);
+    EXPECT_EQ(by_polygon.at(1).size(), m + 1);
+    expect_conforming(r.output, {1.0, 1.0});
 }
 
 /// n x n small patches on a floor (0.1 m apart) under an emitter 3 m up.
