@@ -42,6 +42,7 @@ inline Location locate_quad(const Vec2* c, Vec2 p) {
     Location best;
     auto consider = [&](double v) {
         const double u = u_of(v);
+        if (!std::isfinite(u) || !std::isfinite(v)) return;  // a root where the quad's sides are parallel
         const double outside = std::max({0.0, -u, u - 1.0, -v, v - 1.0});
         if (!(outside < best.outside)) return;
         best.outside = outside;

@@ -100,7 +100,7 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
                  ranges.end());
     detail::parallel_rows("output", ranges.size(), 16, 0, progress, [&](std::size_t i) {
         const LeafRange range = ranges[i];
-        // The vertices of the leaf's output elements (a fan's centre and edge vertices once),
+        // The vertices of the leaf's output elements (each once, however many elements share it),
         // each a hair inside the leaf; `point_of` per element corner.
         const Node& leaf_node = tree.nodes[leaf[range.begin]];
         std::vector<Vec3> points;

@@ -13,6 +13,7 @@ namespace radiosity::hr {
 namespace {
 
 constexpr std::size_t kPatchesPerReport = 65536;  ///< a small part of a second of the leaf mesh
+constexpr std::size_t kMostPointsToSplit = 256;    ///< see MeshWriter::split_leaf
 
 /// Appends the vertices along a -> b, from a up to but without b, where neighbours split it.
 void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>& out) {
@@ -70,8 +71,14 @@ public:
 
 private:
     /// A leaf with vertices on its edges (boundary_), in as few elements as keep them all
-    /// (hr_conform.h): neighbours then share every vertex on their common edge.
+    /// (hr_conform.h): neighbours then share every vertex on their common edge. The split's cost
+    /// grows as the cube of the vertices (25 ms at 258): a leaf with more, a large dark polygon
+    /// beside finely split ones, is fanned from its centre instead.
     void split_leaf(const Node& n) {
+        if (boundary_.size() > kMostPointsToSplit) {
+            fan(n);
+            return;
+        }
         points_.clear();
         for (int32_t v : boundary_) points_.push_back(tree_.vertices[v]);
         pieces_.clear();
@@ -81,6 +88,14 @@ private:
             for (int k = 0; k < (piece[3] < 0 ? 3 : 4); ++k) corners[k] = vertex(boundary_[piece[k]]);
             add(n, corners);
         }
+    }
+
+    void fan(const Node& n) {
+        Elements& out = mesh_.elements;
+        const auto centre = static_cast<int32_t>(out.vertices.size());
+        out.vertices.push_back(n.centre);
+        for (std::size_t k = 0; k < boundary_.size(); ++k)
+            add(n, {centre, vertex(boundary_[k]), vertex(boundary_[(k + 1) % boundary_.size()]), -1});
     }
 
     /// The edges of `patch` that lie on an intersection or contact line (Elements::cut_edges).

@@ -79,7 +79,8 @@ struct HierarchyStats {
 struct HierarchyResult {
     BuildResult build;               ///< the patches (one element per polygon or n-gon piece)
     /// Output mesh: the leaves, with every hanging vertex of a finer neighbour on their edges
-    /// (leaves that have one are fanned from their centre), so the colours have no cracks.
+    /// (leaves that have one are split into triangles and quads with those vertices as corners),
+    /// so the colours have no cracks.
     Elements output;                 ///< emission: E + rho G from the lamps (their first reflection)
     std::vector<Rgb> output_radiance;  ///< per output element: its leaf's radiance
     CornerColors colors;             ///< interpolated on the output mesh; input corners for ORIGINAL
