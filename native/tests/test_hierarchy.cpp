@@ -362,6 +362,19 @@ TEST(Hierarchy, LeafBesideFinerOnesSplitsIntoFewElements) {
     expect_conforming(r.output, {1.0, 1.0, 0.4});
 }
 
+/// The distinct vertices of polygon 0's elements strictly inside the edge x = 1, 0 < y < 1.
+std::size_t lit_vertices_inside_shared_edge(const Elements& out) {
+    std::vector<float> on_edge;
+    const auto by_polygon = elements_by_polygon(out);
+    for (std::size_t e : by_polygon.at(0))
+        for (int k = 0; k < (out.is_triangle(e) ? 3 : 4); ++k) {
+            const Vec3 p = out.vertices[out.corners[e][k]];
+            if (p.x == 1.0f && p.y > 0.0f && p.y < 1.0f) on_edge.push_back(p.y);
+        }
+    std::sort(on_edge.begin(), on_edge.end());
+    return std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin());
+}
+
 TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
     // The black square beside a lit one refined unevenly, some levels deeper: its shared edge
     // carries m vertices of the lit square's leaves. Each of the edge's m + 1 segments needs an
@@ -371,17 +384,23 @@ TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
     scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
     scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
     const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
-    const auto by_polygon = elements_by_polygon(r.output);
-    std::vector<float> on_edge;  // the lit square's vertices strictly inside the shared edge x = 1
-    for (std::size_t e : by_polygon.at(0))
-        for (int k = 0; k < (r.output.is_triangle(e) ? 3 : 4); ++k) {
-            const Vec3 p = r.output.vertices[r.output.corners[e][k]];
-            if (p.x == 1.0f && p.y > 0.0f && p.y < 1.0f) on_edge.push_back(p.y);
-        }
-    std::sort(on_edge.begin(), on_edge.end());
-    const auto m = std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin());
+    const std::size_t m = lit_vertices_inside_shared_edge(r.output);
     ASSERT_GT(m, 8u);
-    EXPECT_EQ(by_polygon.at(1).size(), m + 1);
+    EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 1);
+    expect_conforming(r.output, {1.0, 1.0});
+}
+
+TEST(Hierarchy, LeafBesideHundredsOfVerticesIsFannedFromItsCentre) {
+    // As above with a lamp just over the shared edge: hundreds of vertices on it. The split's cost
+    // grows as the cube of the vertices, so beyond 256 the black square is fanned from its centre
+    // (m + 4 triangles), still without a T-vertex or a degenerate triangle.
+    test::SceneArrays scene;
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
+    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.005f, 0.001), Vec3(1.02f, 0.5f, 0.02f)));
+    const std::size_t m = lit_vertices_inside_shared_edge(r.output);
+    ASSERT_GT(m, 256u);
+    EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 4);
     expect_conforming(r.output, {1.0, 1.0});
 }
 
