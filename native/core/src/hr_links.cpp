@@ -509,6 +509,7 @@ std::size_t Refiner::refine(double threshold, const ProgressFn& progress) {
         std::vector<std::pair<double, std::size_t>> errors;
         double total = 0.0;
         for (std::size_t k = 0; k < r.links.size(); ++k) {
+            if (k + kPrefetchLinks < r.links.size()) prefetch_source(tree_.nodes[r.links[k + kPrefetchLinks].source]);
             const Node& s = tree_.nodes[r.links[k].source];
             if (!receiver_splits && s.kind != Kind::Cluster && !tree_.can_split(s)) continue;
             errors.emplace_back(error(r, r.links[k], split_at_start(receiver)), k);

@@ -40,7 +40,9 @@ void gather(Tree& tree, bool lamps_only = false) {
             Node& r = tree.nodes[i];
             r.gathered = Rgb(0.0);
             if (r.kind == Kind::Cluster) tree.cubes[r.cluster] = AmbientCube{};
-            for (const Link& l : r.links) {
+            for (std::size_t k = 0; k < r.links.size(); ++k) {
+                if (k + kPrefetchLinks < r.links.size()) prefetch_source(tree.nodes[r.links[k + kPrefetchLinks].source]);
+                const Link& l = r.links[k];
                 const Node& s = tree.nodes[l.source];
                 if (lamps_only && !s.is_lamp()) continue;
                 if (r.is_element() && s.is_element()) {

@@ -109,6 +109,17 @@ struct Node {
     bool is_lamp() const { return kind == Kind::PointLamp || kind == Kind::Sun; }
 };
 
+/// Asks for node `id`'s lines that a link's reader takes (kind and centre, radiance) before it
+/// needs them: a receiver's sources lie anywhere among the nodes, so each read of one waits for
+/// memory unless it was asked for a few links ahead.
+inline void prefetch_source(const Node& n) {
+    __builtin_prefetch(&n.kind);
+    __builtin_prefetch(&n.radiance);
+}
+
+/// Links read ahead of the one being summed (prefetch_source).
+constexpr std::size_t kPrefetchLinks = 8;
+
 /// The unit direction from `receiver` to a source it gathers from as a point (a sun: towards it).
 inline Vec3 towards_source(const Node& receiver, const Node& source) {
     return source.kind == Kind::Sun ? -source.normal : glm::normalize(source.centre - receiver.centre);
