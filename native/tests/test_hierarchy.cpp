@@ -375,15 +375,20 @@ std::size_t lit_vertices_inside_shared_edge(const Elements& out) {
     return std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin());
 }
 
+/// Polygon 0, a lit square x in [1, 2], beside polygon 1, a black one x in [0, 1], baked with `s`.
+HierarchyResult bake_lit_square_beside_black_one(const HierarchySettings& s) {
+    test::SceneArrays scene;
+    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
+    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
+    return bake_hierarchical(scene.input(), s);
+}
+
 TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
     // The black square beside a lit one refined unevenly, some levels deeper: its shared edge
     // carries m vertices of the lit square's leaves. Each of the edge's m + 1 segments needs an
     // element of its own (two points of the edge and one across), and m + 1 suffice: triangles to
     // the far corners and one quad. A fan from the centre would take m + 4.
-    test::SceneArrays scene;
-    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
-    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
-    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
+    const HierarchyResult r = bake_lit_square_beside_black_one(with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
     const std::size_t m = lit_vertices_inside_shared_edge(r.output);
     ASSERT_GT(m, 8u);
     EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 1);
@@ -394,10 +399,7 @@ TEST(Hierarchy, LeafBesideHundredsOfVerticesIsFannedFromItsCentre) {
     // As above with a lamp just over the shared edge: hundreds of vertices on it. The split's cost
     // grows as the cube of the vertices, so beyond 256 the black square is fanned from its centre
     // (m + 4 triangles), still without a T-vertex or a degenerate triangle.
-    test::SceneArrays scene;
-    scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
-    scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
-    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.005f, 0.001), Vec3(1.02f, 0.5f, 0.02f)));
+    const HierarchyResult r = bake_lit_square_beside_black_one(with_lamp(settings(0.005f, 0.001), Vec3(1.02f, 0.5f, 0.02f)));
     const std::size_t m = lit_vertices_inside_shared_edge(r.output);
     ASSERT_GT(m, 256u);
     EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 4);

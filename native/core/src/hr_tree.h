@@ -87,7 +87,7 @@ struct Node {
     int32_t second_child = -1;      ///< clusters only
     int32_t child_count = 0;
     int32_t lamp = -1;              ///< index into Lights::points or ::suns for lamp nodes
-    int32_t cluster = -1;           ///< clusters: index into Tree::emitters and ::cubes
+    int32_t cluster = -1;           ///< clusters: index into Tree::emitters, ::cubes and ::splits
     // Geometry (fixed once the node exists).
     std::array<int32_t, 4> corners{-1, -1, -1, -1};  ///< elements: vertex ids, [3] = -1 for triangles
     int32_t patch = -1;             ///< elements: the patch they split from (its polygon, material)
@@ -109,7 +109,7 @@ struct Node {
     bool is_lamp() const { return kind == Kind::PointLamp || kind == Kind::Sun; }
 };
 
-/// Asks for node `id`'s lines that a link's reader takes (kind and centre, radiance) before it
+/// Asks for the lines of node `n` that a link's reader takes (kind and centre, radiance) before it
 /// needs them: a receiver's sources lie anywhere among the nodes, so each read of one waits for
 /// memory unless it was asked for a few links ahead.
 inline void prefetch_source(const Node& n) {
