@@ -26,8 +26,8 @@ struct Samples {
 Samples sample_polygons(const SceneInput& input, float spacing);
 
 /// The colour at each sample: the element of `mesh` (from the sample's polygon) that holds it,
-/// its corner colours (4 per element) interpolated barycentrically (triangles) or bilinearly
-/// (quads). `unlocated` counts samples found in no element (the nearest one is used).
+/// its corner colours (4 per element) interpolated barycentrically in triangles and, as Blender
+/// shows quads, in the two triangles 0 1 2 and 0 2 3 of a quad. `unlocated` counts samples found in no element (the nearest one is used).
 std::vector<Rgb> colours_at(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& element_corner,
                             std::size_t& unlocated);
 
