@@ -21,10 +21,15 @@
 namespace radiosity {
 namespace {
 
-/// Freed link lists stay in the allocator's heap, counted in the process's memory; hands them
-/// back to the system, so that the output stage's arrays do not come on top of them (at 10^6
-/// triangles that was the bake's peak: 4.0 GB, where the links phase peaks at 3.6).
-void return_freed_memory() {
+/// Frees the link lists of the nodes for which `drop(node)` holds. Freed lists stay in the
+/// allocator's heap, counted in the process's memory, so the heap is handed back to the system:
+/// otherwise the output stage's arrays come on top of it (at 10^6 triangles that was the bake's
+/// peak: 4.0 GB, where the links phase peaks at 3.6).
+template <class Drop>
+void free_links(hr::Tree& tree, Drop drop) {
+    tbb::parallel_for(std::size_t(0), tree.nodes.size(), [&](std::size_t n) {
+        if (drop(n)) std::vector<hr::Link>().swap(tree.nodes[n].links);
+    });
 #ifdef __GLIBC__
     malloc_trim(0);
 #endif
@@ -96,8 +101,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     std::vector<Rgb> lamp_light = hr::lamp_light(tree);
     const double scale = hr::reference_radiance(tree);
     // Most of the memory, before lamp detail grows the nodes and the output mesh is made.
-    hr::free_links_not_gathered(tree);
-    return_freed_memory();
+    free_links(tree, [&](std::size_t n) { return !hr::links_gathered(tree, int32_t(n)); });
     const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
     result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
                                                         lamp_finest, lamp_light, progress);
@@ -113,9 +117,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
     hr::gather_at_corners(tree, visibility, result.output, mesh.leaf, rest, corner_light, progress);
     // The rest of the links, before the corner colours' welding and sets.
-    tbb::parallel_for(std::size_t(0), tree.nodes.size(),
-                      [&](std::size_t n) { std::vector<hr::Link>().swap(tree.nodes[n].links); });
-    return_freed_memory();
+    free_links(tree, [](std::size_t) { return true; });
     result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
     result.seconds_interpolate = seconds_since(start);
 

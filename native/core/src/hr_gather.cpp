@@ -7,7 +7,6 @@
 #include "radiosity/near_field.h"
 
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 
@@ -180,11 +179,8 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
     });
 }
 
-void free_links_not_gathered(Tree& tree) {
-    tbb::parallel_for(std::size_t(0), tree.nodes.size(), [&](std::size_t n) {
-        if (!tree.nodes[n].is_element() || !resolved(tree, int32_t(n)))
-            std::vector<Link>().swap(tree.nodes[n].links);
-    });
+bool links_gathered(const Tree& tree, int32_t node) {
+    return tree.nodes[node].is_element() && resolved(tree, node);
 }
 
 }  // namespace radiosity::hr

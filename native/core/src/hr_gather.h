@@ -30,9 +30,9 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
                        const std::vector<int32_t>& leaf, std::vector<Rgb>& rest, std::vector<Rgb>& corner_light,
                        const ProgressFn& progress);
 
-/// Frees the links gather_at_corners will not read: clusters' and those of patches below the
-/// resolved scale. At 10^6 triangles they are most of the bake's memory (the room's walls keep
-/// theirs).
-void free_links_not_gathered(Tree& tree);
+/// Whether gather_at_corners reads node `node`'s links: not a cluster's, nor those of patches
+/// below the resolved scale. At 10^6 triangles those are most of the bake's memory (the room's
+/// walls keep theirs), freed before the output stage.
+bool links_gathered(const Tree& tree, int32_t node);
 
 }  // namespace radiosity::hr
