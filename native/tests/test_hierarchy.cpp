@@ -362,25 +362,28 @@ TEST(Hierarchy, LeafBesideFinerOnesSplitsIntoFewElements) {
     expect_conforming(r.output, {1.0, 1.0, 0.4});
 }
 
-/// The distinct vertices of polygon 0's elements strictly inside the edge x = 1, 0 < y < 1.
-std::size_t lit_vertices_inside_shared_edge(const Elements& out) {
-    std::vector<float> on_edge;
-    const auto by_polygon = elements_by_polygon(out);
-    for (std::size_t e : by_polygon.at(0))
-        for (int k = 0; k < (out.is_triangle(e) ? 3 : 4); ++k) {
-            const Vec3 p = out.vertices[out.corners[e][k]];
-            if (p.x == 1.0f && p.y > 0.0f && p.y < 1.0f) on_edge.push_back(p.y);
-        }
-    std::sort(on_edge.begin(), on_edge.end());
-    return std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin());
-}
+/// What a black square x in [0, 1] makes of the vertices a lit square x in [1, 2] puts on their
+/// shared edge, baked with `s` (its output checked to conform).
+struct BlackSquare {
+    std::size_t edge_vertices = 0;  ///< the lit square's distinct vertices strictly inside x = 1
+    std::size_t elements = 0;       ///< the black square's output elements
+};
 
-/// Polygon 0, a lit square x in [1, 2], beside polygon 1, a black one x in [0, 1], baked with `s`.
-HierarchyResult bake_lit_square_beside_black_one(const HierarchySettings& s) {
+BlackSquare black_square_beside_lit_one(const HierarchySettings& s) {
     test::SceneArrays scene;
     scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
     scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.0));
-    return bake_hierarchical(scene.input(), s);
+    const HierarchyResult r = bake_hierarchical(scene.input(), s);
+    expect_conforming(r.output, {1.0, 1.0});
+    const auto by_polygon = elements_by_polygon(r.output);
+    std::vector<float> on_edge;
+    for (std::size_t e : by_polygon.at(0))
+        for (int k = 0; k < (r.output.is_triangle(e) ? 3 : 4); ++k) {
+            const Vec3 p = r.output.vertices[r.output.corners[e][k]];
+            if (p.x == 1.0f && p.y > 0.0f && p.y < 1.0f) on_edge.push_back(p.y);
+        }
+    std::sort(on_edge.begin(), on_edge.end());
+    return {std::size_t(std::unique(on_edge.begin(), on_edge.end()) - on_edge.begin()), by_polygon.at(1).size()};
 }
 
 TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
@@ -388,22 +391,18 @@ TEST(Hierarchy, LeafBesideMuchFinerOnesSplitsIntoOneElementPerSegment) {
     // carries m vertices of the lit square's leaves. Each of the edge's m + 1 segments needs an
     // element of its own (two points of the edge and one across), and m + 1 suffice: triangles to
     // the far corners and one quad. A fan from the centre would take m + 4.
-    const HierarchyResult r = bake_lit_square_beside_black_one(with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
-    const std::size_t m = lit_vertices_inside_shared_edge(r.output);
-    ASSERT_GT(m, 8u);
-    EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 1);
-    expect_conforming(r.output, {1.0, 1.0});
+    const BlackSquare b = black_square_beside_lit_one(with_lamp(settings(0.02f, 0.01), Vec3(1.1f, 0.3f, 0.1f)));
+    ASSERT_GT(b.edge_vertices, 8u);
+    EXPECT_EQ(b.elements, b.edge_vertices + 1);
 }
 
 TEST(Hierarchy, LeafBesideHundredsOfVerticesIsFannedFromItsCentre) {
     // As above with a lamp just over the shared edge: hundreds of vertices on it. The split's cost
     // grows as the cube of the vertices, so beyond 256 the black square is fanned from its centre
     // (m + 4 triangles), still without a T-vertex or a degenerate triangle.
-    const HierarchyResult r = bake_lit_square_beside_black_one(with_lamp(settings(0.005f, 0.001), Vec3(1.02f, 0.5f, 0.02f)));
-    const std::size_t m = lit_vertices_inside_shared_edge(r.output);
-    ASSERT_GT(m, 256u);
-    EXPECT_EQ(elements_by_polygon(r.output).at(1).size(), m + 4);
-    expect_conforming(r.output, {1.0, 1.0});
+    const BlackSquare b = black_square_beside_lit_one(with_lamp(settings(0.005f, 0.001), Vec3(1.02f, 0.5f, 0.02f)));
+    ASSERT_GT(b.edge_vertices, 256u);
+    EXPECT_EQ(b.elements, b.edge_vertices + 4);
 }
 
 /// n x n small patches on a floor (0.1 m apart) under an emitter 3 m up.
