@@ -54,7 +54,7 @@ py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& fac
     BuildResult build;
     {
         py::gil_scoped_release release;
-        ElementLimits limits;
+        ElementLimits limits = BakeSettings().limits;  // with bake()'s contact cuts: the same mesh
         limits.max_aspect = max_element_aspect;
         build = build_elements(input, element_size, limits);
     }

@@ -30,6 +30,23 @@ def box_arrays(size=1.0, rho=0.5, emitted=1.0):
     return v, offsets, corners, reflectance, emission
 
 
+def block_on_floor_arrays():
+    """A 2 m floor (emitting) with a 0.5 m block standing on it, off the floor's element grid."""
+    a, b, h = -0.3, 0.2, 0.5
+    v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0],
+                  [a, a, 0], [b, a, 0], [b, b, 0], [a, b, 0],
+                  [a, a, h], [b, a, h], [b, b, h], [a, b, h]], dtype=np.float32)
+    quads = [[0, 1, 2, 3],  # floor, +z
+             [8, 9, 10, 11],  # block top
+             [4, 5, 9, 8], [5, 6, 10, 9], [6, 7, 11, 10], [7, 4, 8, 11]]  # block sides
+    corners = np.array(quads, dtype=np.int32).ravel()
+    offsets = np.arange(0, 4 * len(quads) + 1, 4, dtype=np.int32)
+    reflectance = np.full((len(quads), 3), 0.5, dtype=np.float32)
+    emission = np.zeros((len(quads), 3), dtype=np.float32)
+    emission[0] = 1.0
+    return v, offsets, corners, reflectance, emission
+
+
 class FurnaceTest(unittest.TestCase):
     def test_closed_box_gives_emission_over_one_minus_rho(self):
         rho, emitted = 0.6, 2.0
@@ -72,6 +89,16 @@ class OutputShapesTest(unittest.TestCase):
             np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
         self.assertEqual(layout["elements"], 6 * 16)
         self.assertEqual(layout["skipped"], [])
+
+    def test_elements_have_the_bakes_contact_cuts(self):
+        """A block standing on a floor: the floor is cut along the block's footprint in bake(), and
+        elements() must return that same mesh (the automatic settings and the preview read it)."""
+        arrays = block_on_floor_arrays()
+        layout = _core.elements(*arrays, element_size=0.5)
+        result = _core.bake(*arrays, element_size=0.5, resolution=16)
+        self.assertGreater(result["elements"], 22)  # 16 floor + 6 block elements without the cut
+        for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
+            np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
 
     def test_float64_and_list_input_is_accepted(self):
         v, offsets, corners, reflectance, emission = box_arrays()
