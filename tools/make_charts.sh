@@ -6,7 +6,7 @@
 #
 # Each chart is one step function below: it writes its CSV (and any text it prints) into
 # docs/charts/ and plots the PNG with Debian's matplotlib (/usr/bin/python3). Add a chart by
-# adding a step function and its name to STEPS. Uses build/ (or $BUILD_DIR), built first.
+# adding a step function and its name to STEPS. Uses build/ (or $BUILD_DIR), built first with the lab (lab/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BUILD_DIR:-$root/build}
@@ -35,7 +35,7 @@ step_bake_vs_cycles() {
 # native measurements (radiosity_charts, about 2 minutes).
 step_native() {
   cmake --build "$build" -j "$(nproc)" --target radiosity_charts >/dev/null
-  "$build/native/bench/radiosity_charts" "$charts"
+  "$build/lab/radiosity_charts" "$charts"
   /usr/bin/python3 "$charts/plot_native.py" "$charts"
 }
 
@@ -46,15 +46,15 @@ step_native() {
 # 1e-6).
 step_hierarchy() {
   cmake --build "$build" -j "$(nproc)" --target radiosity_hierarchy_charts >/dev/null
-  "$build/native/bench/radiosity_hierarchy_charts" accuracy "$charts"
-  "$build/native/bench/radiosity_hierarchy_charts" oracle "$charts"
-  "$build/native/bench/radiosity_hierarchy_charts" scaling "$charts"
+  "$build/lab/radiosity_hierarchy_charts" accuracy "$charts"
+  "$build/lab/radiosity_hierarchy_charts" oracle "$charts"
+  "$build/lab/radiosity_hierarchy_charts" scaling "$charts"
   /usr/bin/python3 "$charts/plot_hierarchy.py" "$charts"
 }
 
 STEPS=(native bake_vs_cycles hierarchy)
 
-"$root/tools/build.sh"
+RADIOSITY_BUILD_LAB=ON "$root/tools/build.sh"
 ensure_plotting
 steps=("$@")
 [ $# -gt 0 ] || steps=("${STEPS[@]}")
