@@ -28,7 +28,7 @@ void require_shape(const Array<T>& a, const char* name, py::ssize_t rows, py::ss
                            (columns == 0 ? ",)" : ", " + std::to_string(columns) + ")");
         std::string got = "(";
         for (py::ssize_t d = 0; d < a.ndim(); ++d) got += std::to_string(a.shape(d)) + (d + 1 < a.ndim() ? ", " : "");
-        throw py::value_error(std::string(name) + " must have shape " + want + ", got " + got + ")");
+        throw InputError(std::string(name) + " must have shape " + want + ", got " + got + ")");
     }
 }
 

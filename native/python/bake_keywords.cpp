@@ -16,7 +16,7 @@ Method parse_method(const std::string& name) {
     if (name == "gauss_seidel") return Method::GaussSeidel;
     if (name == "jacobi") return Method::Jacobi;
     if (name == "progressive") return Method::Progressive;
-    throw py::value_error("method must be 'gauss_seidel', 'jacobi' or 'progressive', got '" + name + "'");
+    throw InputError("method must be 'gauss_seidel', 'jacobi' or 'progressive', got '" + name + "'");
 }
 
 /// Element corner colours as (E, 4, 3); the 4th corner of a triangle repeats zero.
@@ -38,10 +38,10 @@ ProgressMonitor* monitor_of(const py::object& progress) {
 BakeSettings bake_settings(float element_size, int resolution, const std::string& method, double tolerance,
                            int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                            std::size_t matrix_budget_bytes) {
-    if (resolution < 8 || resolution % 2 != 0) throw py::value_error("resolution must be an even number >= 8");
-    if (!(element_size >= 0.0f)) throw py::value_error("element_size must be >= 0");
-    if (!(tolerance > 0.0)) throw py::value_error("tolerance must be > 0");
-    if (max_iterations < 1) throw py::value_error("max_iterations must be >= 1");
+    if (resolution < 8 || resolution % 2 != 0) throw InputError("resolution must be an even number >= 8");
+    if (!(element_size >= 0.0f)) throw InputError("element_size must be >= 0");
+    if (!(tolerance > 0.0)) throw InputError("tolerance must be > 0");
+    if (max_iterations < 1) throw InputError("max_iterations must be >= 1");
     BakeSettings settings;
     settings.element_size = element_size;
     settings.resolution = resolution;

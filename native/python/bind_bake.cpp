@@ -50,7 +50,7 @@ py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& fac
                         const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                         float element_size, float max_element_aspect) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
-    if (!(element_size >= 0.0f)) throw py::value_error("element_size must be >= 0");
+    if (!(element_size >= 0.0f)) throw InputError("element_size must be >= 0");
     BuildResult build;
     {
         py::gil_scoped_release release;
@@ -67,7 +67,7 @@ int recommended_resolution_arrays(const Array<float>& element_area, const Array<
                                   double cells) {
     require_shape(element_area, "element_area", -1, 0);
     require_shape(element_vertices, "element_vertices", -1, 3);
-    if (!(cells > 0.0)) throw py::value_error("cells must be > 0");
+    if (!(cells > 0.0)) throw InputError("cells must be > 0");
     // recommended_resolution reads only the count (size() is centre.size()), the areas and the
     // vertices' bounding box.
     Elements elements;

@@ -13,7 +13,7 @@ namespace {
 
 /// A 3-vector entry of a lamp dict; ValueError naming the lamp and key when missing or not finite.
 glm::dvec3 vector_entry(const py::dict& lamp, const char* key, std::size_t index) {
-    if (!lamp.contains(key)) throw py::value_error("light " + std::to_string(index) + ": missing '" + key + "'");
+    if (!lamp.contains(key)) throw InputError("light " + std::to_string(index) + ": missing '" + key + "'");
     std::vector<double> values;
     try {
         values = lamp[key].cast<std::vector<double>>();
@@ -21,20 +21,20 @@ glm::dvec3 vector_entry(const py::dict& lamp, const char* key, std::size_t index
         values.clear();
     }
     if (values.size() != 3 || !std::isfinite(values[0]) || !std::isfinite(values[1]) || !std::isfinite(values[2]))
-        throw py::value_error("light " + std::to_string(index) + ": '" + key + "' must be three finite numbers");
+        throw InputError("light " + std::to_string(index) + ": '" + key + "' must be three finite numbers");
     return {values[0], values[1], values[2]};
 }
 
 Vec3 unit_entry(const py::dict& lamp, const char* key, std::size_t index) {
     const glm::dvec3 v = vector_entry(lamp, key, index);
     const double length = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-    if (!(length > 0.0)) throw py::value_error("light " + std::to_string(index) + ": '" + key + "' has zero length");
+    if (!(length > 0.0)) throw InputError("light " + std::to_string(index) + ": '" + key + "' has zero length");
     return Vec3(v / length);
 }
 
 Rgb colour_entry(const py::dict& lamp, const char* key, std::size_t index) {
     const Rgb c = vector_entry(lamp, key, index);
-    if (c.r < 0 || c.g < 0 || c.b < 0) throw py::value_error("light " + std::to_string(index) + ": '" + key + "' is negative");
+    if (c.r < 0 || c.g < 0 || c.b < 0) throw InputError("light " + std::to_string(index) + ": '" + key + "' is negative");
     return c;
 }
 
@@ -50,7 +50,7 @@ Lights parse_lights(const py::list& lamps) {
             continue;
         }
         if (type != "POINT" && type != "SPOT")
-            throw py::value_error("light " + std::to_string(i) + ": type must be 'POINT', 'SPOT' or 'SUN'");
+            throw InputError("light " + std::to_string(i) + ": type must be 'POINT', 'SPOT' or 'SUN'");
         PointLight light;
         light.position = Vec3(vector_entry(lamp, "position", i));
         light.intensity = colour_entry(lamp, "intensity", i);
@@ -59,7 +59,7 @@ Lights parse_lights(const py::list& lamps) {
             const double half_angle = lamp.contains("half_angle") ? lamp["half_angle"].cast<double>() : NAN;
             const double blend = lamp.contains("blend") ? lamp["blend"].cast<double>() : 0.0;
             if (!(half_angle > 0.0 && half_angle <= M_PI / 2 + 1e-6) || !(blend >= 0.0 && blend <= 1.0))
-                throw py::value_error("light " + std::to_string(i) + ": half_angle must be in (0, pi/2], blend in [0, 1]");
+                throw InputError("light " + std::to_string(i) + ": half_angle must be in (0, pi/2], blend in [0, 1]");
             light.cos_half_angle = static_cast<float>(std::cos(half_angle));
             light.smooth = static_cast<float>((1.0 - std::cos(half_angle)) * blend);
         }

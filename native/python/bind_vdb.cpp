@@ -50,7 +50,7 @@ py::dict voxelize_mesh(const Array<float>& positions, const Array<int32_t>& face
     require_shape(face_offsets, "face_offsets", -1, 0);
     require_shape(corner_vertices, "corner_vertices", -1, 0);
     if (face_offsets.shape(0) < 1 || face_offsets.at(face_offsets.shape(0) - 1) != corner_vertices.shape(0))
-        throw py::value_error("face_offsets[-1] must equal len(corner_vertices)");
+        throw InputError("face_offsets[-1] must equal len(corner_vertices)");
     vdb::WorldGrid grid;
     {
         py::gil_scoped_release release;
@@ -61,8 +61,8 @@ py::dict voxelize_mesh(const Array<float>& positions, const Array<int32_t>& face
 }
 
 void write_grids(const std::string& path, const std::vector<double>& origin, double cell_size, const py::dict& grids) {
-    if (origin.size() != 3) throw py::value_error("origin must be three numbers");
-    if (!(cell_size > 0.0)) throw py::value_error("cell_size must be > 0");
+    if (origin.size() != 3) throw InputError("origin must be three numbers");
+    if (!(cell_size > 0.0)) throw InputError("cell_size must be > 0");
     std::vector<vdb::WorldGrid> storage;
     std::vector<std::string> names;
     storage.reserve(grids.size());
@@ -70,7 +70,7 @@ void write_grids(const std::string& path, const std::vector<double>& origin, dou
         const auto name = key.cast<std::string>();
         const auto values = value.cast<Array<float>>();
         if (!(values.ndim() == 3 || (values.ndim() == 4 && values.shape(3) == 3)))
-            throw py::value_error("grid '" + name + "' must have shape (nz, ny, nx) or (nz, ny, nx, 3)");
+            throw InputError("grid '" + name + "' must have shape (nz, ny, nx) or (nz, ny, nx, 3)");
         vdb::WorldGrid grid;
         grid.origin = {origin[0], origin[1], origin[2]};
         grid.cell_size = cell_size;

@@ -20,7 +20,7 @@ namespace {
 /// One (nz, ny, nx, 3) grid of a medium into `out`, x fastest; ValueError naming medium and key.
 void read_rgb_grid(const py::dict& medium, const char* key, const std::string& name,
                    std::array<int32_t, 3>& dims, std::vector<Rgb>& out) {
-    if (!medium.contains(key)) throw py::value_error(name + " has no '" + key + "'");
+    if (!medium.contains(key)) throw InputError(name + " has no '" + key + "'");
     const auto values = medium[key].cast<Array<float>>();
     const bool first = dims[0] < 0;
     const bool ok = values.ndim() == 4 && values.shape(3) == 3 &&
@@ -28,7 +28,7 @@ void read_rgb_grid(const py::dict& medium, const char* key, const std::string& n
     if (!ok) {
         std::string got;
         for (py::ssize_t d = 0; d < values.ndim(); ++d) got += (d ? ", " : "") + std::to_string(values.shape(d));
-        throw py::value_error(name + ": '" + key + "' must have shape (nz, ny, nx, 3)" +
+        throw InputError(name + ": '" + key + "' must have shape (nz, ny, nx, 3)" +
                               (first ? "" : " like the medium's other grids") + ", got (" + got + ")");
     }
     dims = {int32_t(values.shape(2)), int32_t(values.shape(1)), int32_t(values.shape(0))};
@@ -39,12 +39,12 @@ void read_rgb_grid(const py::dict& medium, const char* key, const std::string& n
 
 Medium parse_medium(const py::handle& entry, std::size_t index) {
     const std::string name = "medium " + std::to_string(index);
-    if (!py::isinstance<py::dict>(entry)) throw py::value_error(name + " must be a dict");
+    if (!py::isinstance<py::dict>(entry)) throw InputError(name + " must be a dict");
     const auto medium = entry.cast<py::dict>();
     for (const char* key : {"origin", "voxel_size"})
-        if (!medium.contains(key)) throw py::value_error(name + " has no '" + key + "'");
+        if (!medium.contains(key)) throw InputError(name + " has no '" + key + "'");
     const auto origin = medium["origin"].cast<std::vector<double>>();
-    if (origin.size() != 3) throw py::value_error(name + ": origin must be three numbers");
+    if (origin.size() != 3) throw InputError(name + ": origin must be three numbers");
     Medium m;
     m.origin = Vec3(origin[0], origin[1], origin[2]);
     m.voxel_size = medium["voxel_size"].cast<float>();
@@ -77,8 +77,8 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
     settings.solve.over_relaxation = over_relaxation;  // the core checks its range (ValueError)
     if (zone_resolution < 8 || zone_resolution % 2 != 0)
-        throw py::value_error("zone_resolution must be an even number >= 8");
-    if (grid_subdivision < 1) throw py::value_error("grid_subdivision must be at least 1");
+        throw InputError("zone_resolution must be an even number >= 8");
+    if (grid_subdivision < 1) throw InputError("grid_subdivision must be at least 1");
     std::vector<Medium> media;
     for (std::size_t i = 0; i < media_list.size(); ++i) media.push_back(parse_medium(media_list[i], i));
 
@@ -124,7 +124,7 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
 }
 
 Rgb rgb_of(const std::vector<double>& v, const char* name) {
-    if (v.size() != 3) throw py::value_error(std::string(name) + " must be three numbers");
+    if (v.size() != 3) throw InputError(std::string(name) + " must be three numbers");
     return Rgb(v[0], v[1], v[2]);
 }
 
@@ -137,7 +137,7 @@ py::dict principled_volume_arrays(const std::vector<double>& color, const Array<
               e = rgb_of(emission_color, "emission_color");
     bool same_shape = density.ndim() == emission_strength.ndim();
     for (py::ssize_t d = 0; same_shape && d < density.ndim(); ++d) same_shape = density.shape(d) == emission_strength.shape(d);
-    if (!same_shape) throw py::value_error("density and emission_strength must have the same shape");
+    if (!same_shape) throw InputError("density and emission_strength must have the same shape");
     std::vector<py::ssize_t> shape(density.shape(), density.shape() + density.ndim());
     shape.push_back(3);
     py::array_t<float> scattering(shape), absorption(shape), emission(shape);

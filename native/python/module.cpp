@@ -9,6 +9,16 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "Bake Radiosity's native core: hemi-cube form factors and radiosity solvers.";
+    // The core's error vocabulary (radiosity/types.h). Every failure is also a `_core.Error`, so a
+    // caller reports any bake that cannot run in one place, and keeps the built-in base its
+    // meaning has. Translators are tried newest first: BudgetError before InputError.
+    auto error = py::reinterpret_steal<py::object>(PyErr_NewException("_core.Error", PyExc_Exception, nullptr));
+    m.attr("Error") = error;
+    auto bases = [&](PyObject* builtin) { return py::make_tuple(py::handle(builtin), error); };
+    py::handle input = py::register_exception<radiosity::InputError>(m, "InputError", bases(PyExc_ValueError));
+    py::register_exception<radiosity::BudgetError>(m, "BudgetError", input);
+    py::register_exception<radiosity::NotConverged>(m, "NotConverged", bases(PyExc_RuntimeError));
+    py::register_exception<radiosity::FileError>(m, "FileError", bases(PyExc_OSError));
     py::register_exception<radiosity::Cancelled>(m, "Cancelled");
     radiosity::python::bind_bake(m);
     radiosity::python::bind_hierarchy(m);

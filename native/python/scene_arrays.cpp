@@ -27,14 +27,14 @@ SceneInput scene_input(const Array<float>& positions, const Array<int32_t>& face
                        const Array<float>& emission, const std::optional<Array<int32_t>>& material) {
     require_shape(positions, "positions", -1, 3);
     require_shape(face_offsets, "face_offsets", -1, 0);
-    if (face_offsets.shape(0) < 1) throw py::value_error("face_offsets needs face_count + 1 entries (at least one)");
+    if (face_offsets.shape(0) < 1) throw InputError("face_offsets needs face_count + 1 entries (at least one)");
     const py::ssize_t faces = face_offsets.shape(0) - 1;
     require_shape(corner_vertices, "corner_vertices", -1, 0);
     require_shape(reflectance, "reflectance", faces, 3);
     require_shape(emission, "emission", faces, 3);
     if (material) require_shape(*material, "material", faces, 0);
     if (face_offsets.at(faces) != corner_vertices.shape(0))
-        throw py::value_error("face_offsets[-1] must equal len(corner_vertices)");
+        throw InputError("face_offsets[-1] must equal len(corner_vertices)");
 
     SceneInput input;
     input.positions = positions.data();

@@ -245,7 +245,7 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
                           "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
                           "for the scene; raise element_size",
                           double(max_edge), elements, limits.max_elements);
-            fail(f, what);
+            throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
     };
     PolygonBuilder build(out, points, static_cast<int32_t>(f), rho, emitted);

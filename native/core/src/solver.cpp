@@ -43,14 +43,14 @@ void report(const ProgressFn& progress, std::size_t done, std::size_t total, dou
 void DivergenceGuard::check(double residual) {
     ++sweeps_;
     if (!std::isfinite(residual))
-        throw std::runtime_error(std::string(method_) + " diverged: the residual is not finite after sweep " +
+        throw NotConverged(std::string(method_) + " diverged: the residual is not finite after sweep " +
                                  std::to_string(sweeps_) +
                                  " (form-factor rows summing above 1 with reflectance near 1?)");
     if (first_ < 0.0) first_ = residual;
     growth_ = residual > previous_ && sweeps_ > 1 ? growth_ + 1 : 0;
     previous_ = residual;
     if (growth_ >= growth_limit && residual > first_)
-        throw std::runtime_error(std::string(method_) + " diverged: the relative residual grew for " +
+        throw NotConverged(std::string(method_) + " diverged: the relative residual grew for " +
                                  std::to_string(growth_) + " sweeps in a row to " + std::to_string(residual) +
                                  " (first " + std::to_string(first_) +
                                  "); form-factor rows summing above 1 with reflectance near 1?");

@@ -107,7 +107,7 @@ ZonalMatrix compute_exchange_factors(const Elements& elements, const std::vector
         return (bytes += rows[x].col.size() * bytes_per_nonzero) <= settings.budget_bytes;
     });
     if (!within_budget)
-        throw InputError("exchange factors of " + std::to_string(elements.size()) + " elements and " +
+        throw BudgetError("exchange factors of " + std::to_string(elements.size()) + " elements and " +
                          std::to_string(zones.size()) + " zones exceed the memory budget of " +
                          std::to_string(settings.budget_bytes >> 20) +
                          " MiB (they grow as zones squared): use larger voxels or raise the budget");

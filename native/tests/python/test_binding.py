@@ -137,6 +137,45 @@ class BadInputTest(unittest.TestCase):
             _core.bake(*box_arrays(), method="magic")
 
 
+class ErrorVocabularyTest(unittest.TestCase):
+    """Each failure has its own class, is also a `_core.Error` (one place reports them all), and
+    keeps the built-in base its meaning has."""
+
+    def test_bad_input_is_an_input_error(self):
+        v, offsets, corners, reflectance, emission = box_arrays()
+        reflectance[2] = 1.0
+        with self.assertRaisesRegex(_core.InputError, "polygon 2: reflectance") as caught:
+            _core.bake(v, offsets, corners, reflectance, emission)
+        self.assertIsInstance(caught.exception, ValueError)
+        self.assertIsInstance(caught.exception, _core.Error)
+        with self.assertRaisesRegex(_core.InputError, "resolution"):
+            _core.bake(*box_arrays(), resolution=7)
+
+    def test_too_many_elements_is_a_budget_error(self):
+        with self.assertRaisesRegex(_core.BudgetError, "cap of 100") as caught:
+            _core.bake(*box_arrays(), element_size=0.1, max_elements=100)
+        self.assertIsInstance(caught.exception, _core.InputError)
+
+    def test_divergence_is_not_converged(self):
+        """Over-relaxed Gauss-Seidel in a closed 2 m room with reflectance 0.999 (what an albedo of
+        1 becomes) grows its residual: the solver stops and says why."""
+        v, offsets, corners, reflectance, emission = box_arrays(size=2.0, rho=0.999, emitted=0.0)
+        emission[1] = 1.0
+        with self.assertRaisesRegex(_core.NotConverged, "Gauss-Seidel diverged") as caught:
+            _core.bake(v, offsets, corners, reflectance, emission, element_size=0.2, resolution=16,
+                       near_field=True, over_relaxation=0.0)
+        self.assertIsInstance(caught.exception, RuntimeError)
+        self.assertIsInstance(caught.exception, _core.Error)
+
+    def test_missing_file_is_a_file_error(self):
+        with self.assertRaisesRegex(_core.FileError, "no-such-file.vdb") as caught:
+            _core.vdb_grids("/no-such-folder/no-such-file.vdb")
+        self.assertIsInstance(caught.exception, OSError)
+
+    def test_cancel_is_not_a_failure(self):
+        self.assertFalse(issubclass(_core.Cancelled, _core.Error))
+
+
 class LightsTest(unittest.TestCase):
     def floor(self, rho=0.5):
         v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)

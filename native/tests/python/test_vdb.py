@@ -55,9 +55,9 @@ class ReadTest(unittest.TestCase):
 
     def test_missing_grid_is_named(self):
         write_block(self.path, 0.25)
-        with self.assertRaisesRegex(RuntimeError, "no grid 'temperature'"):
+        with self.assertRaisesRegex(_core.FileError, "no grid 'temperature'"):
             _core.read_vdb_grid(self.path, "temperature", np.eye(4), 0.25)
-        with self.assertRaisesRegex(RuntimeError, "cannot open OpenVDB file"):
+        with self.assertRaisesRegex(_core.FileError, "cannot open OpenVDB file"):
             _core.read_vdb_grid(os.path.join(self.folder.name, "missing.vdb"), "density", np.eye(4), 0.25)
 
 

@@ -1,6 +1,7 @@
 /// @file vdb_read.cpp
 /// @brief Reading an OpenVDB grid onto an axis-aligned world grid by box-averaged trilinear samples.
 #include "radiosity/vdb_io.h"
+#include "radiosity/types.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -21,9 +22,9 @@ openvdb::GridBase::Ptr open_grid(const std::string& path, const std::string& nam
     try {
         file.open();
     } catch (const openvdb::Exception& e) {
-        throw std::runtime_error("cannot open OpenVDB file '" + path + "': " + e.what());
+        throw FileError("cannot open OpenVDB file '" + path + "': " + e.what());
     }
-    if (!file.hasGrid(name)) throw std::runtime_error("OpenVDB file '" + path + "' has no grid '" + name + "'");
+    if (!file.hasGrid(name)) throw FileError("OpenVDB file '" + path + "' has no grid '" + name + "'");
     openvdb::GridBase::Ptr grid = file.readGrid(name);
     file.close();
     return grid;
@@ -76,7 +77,7 @@ std::vector<std::array<std::string, 2>> list_grids(const std::string& path) {
     try {
         file.open(false);
     } catch (const openvdb::Exception& e) {
-        throw std::runtime_error("cannot open OpenVDB file '" + path + "': " + e.what());
+        throw FileError("cannot open OpenVDB file '" + path + "': " + e.what());
     }
     std::vector<std::array<std::string, 2>> grids;
     for (auto it = file.beginName(); it != file.endName(); ++it)
@@ -87,7 +88,7 @@ std::vector<std::array<std::string, 2>> list_grids(const std::string& path) {
 
 WorldGrid read_world_grid(const std::string& path, const std::string& name, const glm::dmat4& object_to_world,
                           double cell_size, int samples) {
-    if (!(cell_size > 0.0) || samples < 1) throw std::invalid_argument("cell size must be > 0 and samples >= 1");
+    if (!(cell_size > 0.0) || samples < 1) throw InputError("cell size must be > 0 and samples >= 1");
     const openvdb::GridBase::Ptr base = open_grid(path, name);
     WorldGrid out;
     out.cell_size = cell_size;
@@ -110,7 +111,7 @@ WorldGrid read_world_grid(const std::string& path, const std::string& name, cons
             for (int c = 0; c < 3; ++c) out.values[3 * cell + c] = float(sum[c] * w);
         });
     } else {
-        throw std::runtime_error("grid '" + name + "' in '" + path + "' is " + base->valueType() +
+        throw FileError("grid '" + name + "' in '" + path + "' is " + base->valueType() +
                                  "; only float and vec3s grids can be read");
     }
     return out;

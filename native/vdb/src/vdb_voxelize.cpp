@@ -1,6 +1,7 @@
 /// @file vdb_voxelize.cpp
 /// @brief The inside of a closed mesh as a per-cell volume fraction, through OpenVDB's level sets.
 #include "radiosity/vdb_io.h"
+#include "radiosity/types.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -14,14 +15,14 @@ namespace radiosity::vdb {
 WorldGrid voxelize_mesh_interior(const float* positions, std::size_t vertex_count, const int32_t* face_offsets,
                                  const int32_t* corner_vertices, std::size_t face_count, double cell_size,
                                  int samples) {
-    if (!(cell_size > 0.0) || samples < 1) throw std::invalid_argument("cell size must be > 0 and samples >= 1");
+    if (!(cell_size > 0.0) || samples < 1) throw InputError("cell size must be > 0 and samples >= 1");
     openvdb::initialize();
     std::vector<openvdb::Vec3s> points(vertex_count);
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (std::size_t v = 0; v < vertex_count; ++v) {
         points[v] = openvdb::Vec3s(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
         for (int a = 0; a < 3; ++a) {
-            if (!std::isfinite(positions[3 * v + a])) throw std::invalid_argument("vertex " + std::to_string(v) + " is not finite");
+            if (!std::isfinite(positions[3 * v + a])) throw InputError("vertex " + std::to_string(v) + " is not finite");
             lo[a] = std::min(lo[a], double(positions[3 * v + a]));
             hi[a] = std::max(hi[a], double(positions[3 * v + a]));
         }
@@ -31,7 +32,7 @@ WorldGrid voxelize_mesh_interior(const float* positions, std::size_t vertex_coun
         for (int32_t k = face_offsets[f] + 1; k + 1 < face_offsets[f + 1]; ++k) {
             const int32_t a = corner_vertices[face_offsets[f]], b = corner_vertices[k], c = corner_vertices[k + 1];
             if (a < 0 || b < 0 || c < 0 || std::size_t(std::max({a, b, c})) >= vertex_count)
-                throw std::invalid_argument("polygon " + std::to_string(f) + ": vertex index out of range");
+                throw InputError("polygon " + std::to_string(f) + ": vertex index out of range");
             triangles.emplace_back(a, b, c);
         }
 

@@ -1,6 +1,7 @@
 /// @file vdb_write.cpp
 /// @brief Writing world grids as sparse OpenVDB grids (zero cells stay inactive).
 #include "radiosity/vdb_io.h"
+#include "radiosity/types.h"
 
 #include <openvdb/openvdb.h>
 
@@ -40,7 +41,7 @@ void write_grids(const std::string& path, const std::vector<NamedGrid>& grids) {
     for (const NamedGrid& named : grids) {
         const WorldGrid& g = *named.grid;
         if (g.values.size() != g.cell_count() * std::size_t(g.channels))
-            throw std::invalid_argument("grid '" + named.name + "': values do not match dims x channels");
+            throw InputError("grid '" + named.name + "': values do not match dims x channels");
         if (g.channels == 1) {
             out.push_back(to_vdb<openvdb::FloatGrid>(g, named.name, [&](std::size_t c) { return g.values[c]; }));
         } else if (g.channels == 3) {
@@ -48,13 +49,13 @@ void write_grids(const std::string& path, const std::vector<NamedGrid>& grids) {
                 return openvdb::Vec3s(g.values[3 * c], g.values[3 * c + 1], g.values[3 * c + 2]);
             }));
         } else {
-            throw std::invalid_argument("grid '" + named.name + "': 1 or 3 channels, not " + std::to_string(g.channels));
+            throw InputError("grid '" + named.name + "': 1 or 3 channels, not " + std::to_string(g.channels));
         }
     }
     try {
         openvdb::io::File(path).write(out);
     } catch (const openvdb::Exception& e) {
-        throw std::runtime_error("cannot write OpenVDB file '" + path + "': " + e.what());
+        throw FileError("cannot write OpenVDB file '" + path + "': " + e.what());
     }
 }
 

@@ -29,6 +29,9 @@ struct Progress {
 /// Return false to cancel: the phase then throws `Cancelled`.
 using ProgressFn = std::function<bool(const Progress&)>;
 
+// The core's errors. The binding maps each to one Python class (native/python/module.cpp), so
+// the add-on reports all of them the same way; anything else escaping the core is a bug.
+
 /// Thrown when a progress callback asked to stop.
 struct Cancelled : std::runtime_error {
     Cancelled() : std::runtime_error("cancelled") {}
@@ -37,6 +40,22 @@ struct Cancelled : std::runtime_error {
 /// Thrown for input the core cannot use; the message names the offending item.
 struct InputError : std::invalid_argument {
     using std::invalid_argument::invalid_argument;
+};
+
+/// Thrown when a bake would exceed its element cap or memory budget; the message says which
+/// setting to change.
+struct BudgetError : InputError {
+    using InputError::InputError;
+};
+
+/// Thrown when an iterative solver diverges; the message names the method and the likely cause.
+struct NotConverged : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Thrown when a file (OpenVDB) cannot be read or written; the message names the file.
+struct FileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 }  // namespace radiosity
