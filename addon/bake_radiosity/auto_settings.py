@@ -6,6 +6,8 @@ the memory budget. No bpy: numbers from the exported arrays only."""
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from . import export, native
 
 CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive",
@@ -78,9 +80,10 @@ class Choice:
 def scene_size(exported):
     """Side of the cube with the scene's surface area. For a room it is about the room's size, and
     a long corridor is not judged by its length alone, so the element count a preset gives stays
-    near 6 x divisions^2 whatever the scene's shape."""
+    near 6 x divisions^2 whatever the scene's shape. Polygons with a non-finite vertex do not count:
+    the core skips them with a warning naming each."""
     _, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
-    return math.sqrt(float(areas.sum()) / 6.0)
+    return math.sqrt(float(areas[np.isfinite(areas)].sum()) / 6.0)
 
 
 @dataclass(frozen=True)

@@ -27,26 +27,44 @@ def output_folder(folder_setting):
     return bpy.path.abspath(folder_setting or "//")
 
 
-def write(scene, exported_media, result, folder_setting):
-    """Replaces the previous bake's Volume objects with this one's; returns the files written."""
-    remove_media()
+def unwritable_reason(folder_setting):
+    """Why the baked grids could not be written to the chosen folder, or None if they can: asked
+    before the solve, so a bake never fails after minutes of work on where its files go."""
+    folder = output_folder(folder_setting)
+    try:
+        os.makedirs(folder, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as error:
+        return "Media Folder '%s' is not writable (%s): choose another folder" % (folder, error.strerror or error)
+    return None
+
+
+def write_files(exported_media, result, folder_setting):
+    """Writes one OpenVDB file per medium and returns their paths; touches no Blender data, so a
+    failure here leaves the file as it was."""
     folder = output_folder(folder_setting)
     os.makedirs(folder, exist_ok=True)
-    collection = _copies_collection(scene)
-    material = _medium_material()
-    protected = exported_media.input_files
     paths = []
     for medium, grids in zip(exported_media.media, result["grids"]):
-        path = _output_path(folder, medium.object_name, protected)
+        path = _output_path(folder, medium.object_name, exported_media.input_files)
         native.core().write_vdb(path, grids["origin"], grids["voxel_size"], _file_grids(grids))
+        paths.append(path)
+    return paths
+
+
+def load(scene, exported_media, paths):
+    """Replaces the previous bake's Volume objects with ones showing the files `write_files` wrote."""
+    remove_media()
+    collection = _copies_collection(scene)
+    material = _medium_material()
+    for medium, path in zip(exported_media.media, paths):
         volume = bpy.data.volumes.new("%s Radiosity" % medium.object_name)
         volume.filepath = path
         volume.materials.append(material)
         obj = bpy.data.objects.new(volume.name, volume)
         obj[MEDIUM_TAG] = medium.object_name
         collection.objects.link(obj)
-        paths.append(path)
-    return paths
 
 
 def remove_media():

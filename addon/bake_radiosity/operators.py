@@ -60,8 +60,8 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
     def execute(self, context):
         try:
             summary = pipeline.bake(context.scene)
-        except (pipeline.BakeError, native.CoreMissingError, ValueError, TypeError) as error:
-            self.report({"ERROR"}, str(error))
+        except (pipeline.BakeError, native.CoreMissingError) as error:
+            self.report({"ERROR"}, "Bake Radiosity failed: %s" % error)
             return {"CANCELLED"}
         for warning in summary["warnings"]:
             self.report({"WARNING"}, warning)
@@ -78,7 +78,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
             view_layer, depsgraph = pipeline.view_layer_and_depsgraph(context.scene)
             job = pipeline.BakeJob(context.scene, depsgraph, view_layer)
         except (pipeline.BakeError, native.CoreMissingError) as error:
-            self.report({"ERROR"}, str(error))
+            self.report({"ERROR"}, "Bake Radiosity failed: %s" % error)
             return {"CANCELLED"}
         self._scene_name = context.scene.name
         self._worker = _Worker(job, want_layout=job.method == "progressive")
@@ -135,7 +135,11 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
         if scene is None:
             self.report({"ERROR"}, "Bake Radiosity: the baked scene was removed")
             return {"CANCELLED"}
-        summary = worker.job.write(scene)
+        try:
+            summary = worker.job.write(scene)
+        except pipeline.BakeError as error:
+            self.report({"ERROR"}, "Bake Radiosity failed: %s" % error)
+            return {"CANCELLED"}
         for warning in summary["warnings"]:
             self.report({"WARNING"}, warning)
         self.report({"INFO"}, "Bake Radiosity: " + scene.radiosity.last_report)

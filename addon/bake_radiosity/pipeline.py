@@ -1,6 +1,7 @@
 """The bake pipeline: export (needs bpy) -> solve (no bpy, may run in a worker thread) ->
 write back (needs bpy). `bake(scene, **overrides)` runs all three; the operator splits them."""
 
+import contextlib
 import functools
 import math
 import time
@@ -22,7 +23,17 @@ TARGETS = ("ORIGINAL", "COPIES")
 
 
 class BakeError(RuntimeError):
-    """A bake that cannot run; the message says why in words an artist can act on."""
+    """A bake that cannot run; the message says why in words an artist can act on. Every failure
+    of a bake reaches the operators and the batch command as this one type."""
+
+
+@contextlib.contextmanager
+def core_errors_as_bake_errors():
+    """The core's errors (bad input, budget, divergence, files: `_core.Error`) as BakeError."""
+    try:
+        yield
+    except native.core().Error as error:
+        raise BakeError(str(error)) from error
 
 
 def settings_of(scene, overrides=None):
@@ -50,6 +61,11 @@ class BakeJob:
 
     def __init__(self, scene, depsgraph, view_layer, overrides=None):
         self.settings = settings_of(scene, overrides)
+        with core_errors_as_bake_errors():
+            self._prepare(depsgraph, view_layer)
+        self.result = None
+
+    def _prepare(self, depsgraph, view_layer):
         start = time.perf_counter()
         self.exported = export.export_scene(depsgraph, view_layer)
         self.seconds_export = time.perf_counter() - start
@@ -58,6 +74,10 @@ class BakeJob:
         self.warnings = list(self.exported.warnings)
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
         self.warnings += self.media.warnings
+        if self.media.media:
+            unwritable = media_writeback.unwritable_reason(self.settings["media_folder"])
+            if unwritable:
+                raise BakeError(unwritable)
         if self.media.media and self.exported.lights:
             raise BakeError("Point, spot and sun lamps are not shot through fog yet: light a scene with media "
                             "by area lamps or emitting meshes")
@@ -69,7 +89,6 @@ class BakeJob:
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
-        self.result = None
 
     @property
     def method(self):
@@ -77,7 +96,8 @@ class BakeJob:
 
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
-        self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
+        with core_errors_as_bake_errors():
+            self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
         self.warnings += self._skipped_warnings()
         hierarchy = self.result.get("hierarchy")
         if hierarchy and hierarchy["leaf_cap_reached"]:
@@ -92,9 +112,10 @@ class BakeJob:
     def element_layout(self):
         """(element_vertices, element_corners) in the order progress reports radiance."""
         e = self.exported
-        layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
-                                        e.emission, e.material, element_size=self.choice.element_size,
-                                        max_element_aspect=self.choice.max_element_aspect)
+        with core_errors_as_bake_errors():
+            layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
+                                            e.emission, e.material, element_size=self.choice.element_size,
+                                            max_element_aspect=self.choice.max_element_aspect)
         return layout["element_vertices"], layout["element_corners"]
 
     def _run_core(self, method, max_iterations, progress):
@@ -120,9 +141,13 @@ class BakeJob:
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
         start = time.perf_counter()
+        media_files = []
+        if self.media.media:  # files first: if one cannot be written, nothing in the scene has changed
+            with core_errors_as_bake_errors():
+                media_files = media_writeback.write_files(self.media, self.result, self.settings["media_folder"])
         self.warnings += writeback.write(scene, self.exported, self.result, self.settings)
-        media_files = (media_writeback.write(scene, self.media, self.result, self.settings["media_folder"])
-                       if self.media.media else [])
+        if self.media.media:
+            media_writeback.load(scene, self.media, media_files)
         seconds_writeback = time.perf_counter() - start
         r, c = self.result, self.choice
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
