@@ -1,8 +1,9 @@
 """Blender materials as the core sees them: a diffuse reflectance and an emitted radiance.
 
 Follows the material output's Surface input through Principled BSDF, Diffuse BSDF, Emission,
-Add Shader and Mix Shader. Anything else becomes a grey diffuse stand-in with a one-line
-warning naming the material, so a bake never fails on an unusual node tree.
+Add Shader, Mix Shader, reroutes and node groups (into a group to its output, and from its
+inputs back out to the group node). Anything else becomes a grey diffuse stand-in with a
+one-line warning naming the material, so a bake never fails on an unusual node tree.
 """
 
 from dataclasses import dataclass, field
@@ -32,7 +33,13 @@ def surface_of(material):
     if output is None or not output.inputs["Surface"].is_linked:
         # Cycles renders an unconnected output black; a black surface only absorbs.
         return Surface(np.zeros(3), np.zeros(3), ["no surface shader connected"])
-    surface = _shader(_linked_node(output.inputs["Surface"]), 1.0)
+    surface = _shader_at(output.inputs["Surface"], (), 1.0)
+    if (surface.reflectance > 1.0).any() or (surface.reflectance < 0.0).any():
+        # Above 1 a surface would give out more light than it receives (and the solve diverge).
+        surface.problems.append("diffuse colour (%.3g, %.3g, %.3g) is outside 0-1; clamped"
+                                % tuple(surface.reflectance))
+    if (surface.emission < 0.0).any():
+        surface.problems.append("negative emission (%.3g, %.3g, %.3g) is taken as 0" % tuple(surface.emission))
     surface.reflectance = np.clip(surface.reflectance, 0.0, MAX_REFLECTANCE)
     surface.emission = np.maximum(surface.emission, 0.0)
     return surface
@@ -59,45 +66,79 @@ def _linked_node(socket):
     return node
 
 
-def _shader(node, weight):
+def _source(socket, groups):
+    """What feeds the input `socket` inside the nest of group nodes `groups`: (an output socket of
+    a node that is neither a reroute nor a group, its groups), or (an input socket left unlinked,
+    whose default_value is the value, its groups). A group's output leads to what feeds that
+    output inside the group; a Group Input node leads back out to the group node's input."""
+    while socket.is_linked:
+        link = socket.links[0]
+        node, output = link.from_node, link.from_socket
+        if node.type == "REROUTE":
+            socket = node.inputs[0]
+        elif node.type == "GROUP" and node.node_tree is not None and _group_output(node.node_tree) is not None:
+            socket = _group_output(node.node_tree).inputs[list(node.outputs).index(output)]
+            groups = groups + (node,)
+        elif node.type == "GROUP_INPUT" and groups:
+            socket = groups[-1].inputs[list(node.outputs).index(output)]
+            groups = groups[:-1]
+        else:
+            return output, groups
+    return socket, groups
+
+
+def _group_output(tree):
+    outputs = [n for n in tree.nodes if n.type == "GROUP_OUTPUT"]
+    active = [n for n in outputs if n.is_active_output]
+    return (active or outputs or [None])[0]
+
+
+def _shader_at(socket, groups, weight):
+    """Weighted reflectance and emission of the shader network feeding the input `socket`."""
+    source, groups = _source(socket, groups)
+    if not source.is_output:  # nothing connected inside a group: Cycles renders no closure, black
+        return Surface(np.zeros(3), np.zeros(3))
+    return _shader(source.node, groups, weight)
+
+
+def _shader(node, groups, weight):
     """Weighted reflectance and emission of the shader network that ends in `node`."""
-    kind = node.type if node is not None else "NONE"
+    kind = node.type
     if kind == "BSDF_PRINCIPLED":
-        return _principled(node, weight)
+        return _principled(node, groups, weight)
     if kind == "BSDF_DIFFUSE":
-        color, problems = _color(node.inputs["Color"])
+        color, problems = _color(node.inputs["Color"], groups)
         return Surface(weight * color, np.zeros(3), problems)
     if kind == "EMISSION":
-        color, problems = _color(node.inputs["Color"])
-        strength, more = _number(node.inputs["Strength"])
+        color, problems = _color(node.inputs["Color"], groups)
+        strength, more = _number(node.inputs["Strength"], groups)
         return Surface(np.zeros(3), weight * color * strength, problems + more)
     if kind in {"ADD_SHADER", "MIX_SHADER"}:
-        return _combination(node, weight)
-    label = node.bl_label if node is not None else "nothing"
+        return _combination(node, groups, weight)
     return Surface(weight * np.array(DEFAULT_REFLECTANCE), np.zeros(3),
-                   ["'%s' is not diffuse; using grey diffuse %.1f" % (label, DEFAULT_REFLECTANCE[0])])
+                   ["'%s' is not diffuse; using grey diffuse %.1f" % (node.bl_label, DEFAULT_REFLECTANCE[0])])
 
 
-def _principled(node, weight):
-    base, problems = _color(node.inputs["Base Color"])
-    metallic, more = _number(node.inputs["Metallic"])
+def _principled(node, groups, weight):
+    base, problems = _color(node.inputs["Base Color"], groups)
+    metallic, more = _number(node.inputs["Metallic"], groups)
     problems += more
     transmission = node.inputs.get("Transmission") or node.inputs.get("Transmission Weight")
     if transmission is not None and (transmission.is_linked or transmission.default_value > 0.0):
         problems.append("transmission is ignored (treated as opaque)")
     # Blender 3.x calls the emission colour "Emission"; 4.x calls it "Emission Color".
     emission_socket = node.inputs.get("Emission Color") or node.inputs.get("Emission")
-    emission, more = _color(emission_socket)
+    emission, more = _color(emission_socket, groups)
     problems += more
-    strength, more = _number(node.inputs["Emission Strength"])
+    strength, more = _number(node.inputs["Emission Strength"], groups)
     problems += more
     # Metals have no diffuse lobe: only the dielectric part reflects diffusely.
     return Surface(weight * base * (1.0 - metallic), weight * emission * strength, problems)
 
 
-def _combination(node, weight):
+def _combination(node, groups, weight):
     if node.type == "MIX_SHADER":
-        fac, problems = _number(node.inputs[0])
+        fac, problems = _number(node.inputs[0], groups)
         parts = ((node.inputs[1], 1.0 - fac), (node.inputs[2], fac))
     else:
         problems = []
@@ -106,34 +147,41 @@ def _combination(node, weight):
     for socket, share in parts:
         if not socket.is_linked or share == 0.0:
             continue
-        part = _shader(_linked_node(socket), weight * share)
+        part = _shader_at(socket, groups, weight * share)
         total.reflectance = total.reflectance + part.reflectance
         total.emission = total.emission + part.emission
         total.problems += part.problems
     return total
 
 
-def _color(socket):
+def _color(socket, groups):
     """RGB of a colour input: its value, an RGB node, or the mean of an image texture."""
-    if not socket.is_linked:
-        return np.array(socket.default_value[:3], dtype=np.float64), []
-    node = _linked_node(socket)
-    if node is not None and node.type == "RGB":
+    source, _ = _source(socket, groups)
+    if not source.is_output:
+        value = np.atleast_1d(np.array(source.default_value, dtype=np.float64))
+        if len(value) < 3:  # a group input of another type: Blender would convert it
+            return np.array(DEFAULT_REFLECTANCE), ["'%s' input fed by a '%s' group input is not supported; using "
+                                                   "grey %.1f" % (socket.name, source.type, DEFAULT_REFLECTANCE[0])]
+        return value[:3], []
+    node = source.node
+    if node.type == "RGB":
         return np.array(node.outputs[0].default_value[:3], dtype=np.float64), []
-    if node is not None and node.type == "TEX_IMAGE" and node.image is not None:
+    if node.type == "TEX_IMAGE" and node.image is not None:
         mean = image_mean_color(node.image)
         if mean is not None:
             return mean, []
         return np.array(socket.default_value[:3]), ["image '%s' has no pixels" % node.image.name]
-    label = node.bl_label if node is not None else "nothing"
     return (np.array(DEFAULT_REFLECTANCE),
-            ["'%s' input driven by '%s' is not supported; using grey %.1f" % (socket.name, label, DEFAULT_REFLECTANCE[0])])
+            ["'%s' input driven by '%s' is not supported; using grey %.1f"
+             % (socket.name, node.bl_label, DEFAULT_REFLECTANCE[0])])
 
 
-def _number(socket):
-    if not socket.is_linked:
-        return float(socket.default_value), []
-    return float(socket.default_value), ["'%s' input is driven by nodes; using its value %.3g" % (socket.name, socket.default_value)]
+def _number(socket, groups):
+    source, _ = _source(socket, groups)
+    if not source.is_output and np.ndim(source.default_value) == 0:
+        return float(source.default_value), []
+    return float(socket.default_value), ["'%s' input is driven by nodes; using its value %.3g"
+                                         % (socket.name, socket.default_value)]
 
 
 def image_mean_color(image):

@@ -51,6 +51,9 @@ def settings_of(scene, overrides=None):
     if settings["method"] not in ("AUTO",) + tuple(auto_settings.CORE_METHODS):
         raise TypeError("method must be AUTO, GAUSS_SEIDEL, PROGRESSIVE, JACOBI or HIERARCHICAL, got %r"
                         % settings["method"])
+    if settings["quality"] == "CUSTOM" and not 16 <= int(settings["hemicube_resolution"]) <= auto_settings.MAX_RESOLUTION:
+        raise BakeError("Resolution must be between 16 and %d, got %s (the presets turn hemi-cubes about the normal "
+                        "where a scene needs more)" % (auto_settings.MAX_RESOLUTION, settings["hemicube_resolution"]))
     if settings["target"] not in TARGETS:
         raise TypeError("target must be ORIGINAL or COPIES, got %r" % settings["target"])
     return settings
@@ -83,7 +86,9 @@ class BakeJob:
                             "by area lamps or emitting meshes")
         if not self.exported.lights and not self.exported.emission.any() and not any(
                 m.grid["emission"].any() for m in self.media.media):
-            self.warnings.append("The scene has no emitting material and no lamp: the bake will be black")
+            # Said before any form factor is computed: the result could only be black.
+            raise BakeError("Nothing lights the scene: no lamp, emitting material or emitting medium is visible in "
+                            "renders (the World's light is not baked)")
         try:
             self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
         except ValueError as error:

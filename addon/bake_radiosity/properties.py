@@ -63,7 +63,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
         name="Hemi-cube Resolution",
         description="Cells along the edge of the hemi-cube's top face. Higher finds smaller and more "
                     "distant surfaces at the cost of time (64 quick look, 128 normal, 256 final)",
-        default=128, min=16, max=2048, soft_max=512,
+        # The core's largest hemi-cube (the presets average turned ones beyond it).
+        default=128, min=16, max=1024, soft_max=512,
         update=_switch_to_custom,
     )
     element_size: FloatProperty(

@@ -1,8 +1,25 @@
 """The Radiosity panel, in Properties > Render and in the 3D View's sidebar (N)."""
 
+import textwrap
+
 import bpy
 
 from . import auto_settings, preview
+
+# Average width of a label character at UI scale 1, in pixels (Blender's default interface font).
+CHARACTER_PIXELS = 7.0
+
+
+def wrapped_lines(text, context):
+    """`text` cut into lines that fit the panel's width (labels do not wrap by themselves); one
+    line where there is no region to measure, as in the background."""
+    region = getattr(context, "region", None)
+    if region is None or region.width <= 0:
+        return [text]
+    preferences = context.preferences
+    scale = preferences.system.ui_scale or preferences.view.ui_scale  # the first is 0 without a window
+    characters = int(region.width / (CHARACTER_PIXELS * scale))
+    return textwrap.wrap(text, max(characters - 4, 16)) or [text]
 
 
 def draw_panel(layout, context):
@@ -16,11 +33,13 @@ def draw_panel(layout, context):
     layout.operator("radiosity.preview", text="Restore Shading" if showing else "Preview Bake",
                     icon="HIDE_OFF" if showing else "SHADING_SOLID", depress=showing)
     if settings.last_report:
-        box = layout.box()
-        box.label(text=settings.last_report, icon="INFO")
-        # Residual, energy balance and error estimate, one line each.
+        box = layout.box().column(align=True)
+        for number, line in enumerate(wrapped_lines(settings.last_report, context)):
+            box.label(text=line, icon="INFO" if number == 0 else "BLANK1")
+        # Residual, energy balance and error estimate, each on lines of its own.
         for part in settings.last_accuracy.split("; ") if settings.last_accuracy else ():
-            box.label(text=part)
+            for line in wrapped_lines(part, context):
+                box.label(text=line)
 
     column = layout.column()
     column.prop(settings, "quality")

@@ -1,0 +1,162 @@
+"""Scenes as artists make them: materials built from node groups, colours outside 0-1, a scene with
+nothing lit, a resolution beyond the core's, and the panel's summary at the sidebar's width."""
+
+import os
+import sys
+import time
+from types import SimpleNamespace
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import scenes  # noqa: E402
+
+args = harness.arguments()
+addon = harness.install_addon(args.addon_zip)
+pipeline = sys.modules[harness.MODULE + ".pipeline"]
+materials = sys.modules[harness.MODULE + ".materials"]
+ui = sys.modules[harness.MODULE + ".ui"]
+
+
+def diffuse_group(name, color):
+    """A node group 'name' with a Color input feeding a Diffuse BSDF inside, and a material that uses
+    it with `color` on the group node (as an artist's "Wall" group would be)."""
+    group = bpy.data.node_groups.new(name, "ShaderNodeTree")
+    if bpy.app.version >= (4, 0, 0):
+        group.interface.new_socket("Color", in_out="INPUT", socket_type="NodeSocketColor")
+        group.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
+    else:
+        group.inputs.new("NodeSocketColor", "Color")
+        group.outputs.new("NodeSocketShader", "Shader")
+    inside_in, inside_out = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
+    bsdf = group.nodes.new("ShaderNodeBsdfDiffuse")
+    group.links.new(inside_in.outputs["Color"], bsdf.inputs["Color"])
+    group.links.new(bsdf.outputs["BSDF"], inside_out.inputs["Shader"])
+
+    material = bpy.data.materials.new(name + " material")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    node = nodes.new("ShaderNodeGroup")
+    node.node_tree = group
+    node.inputs["Color"].default_value = (*color, 1.0)
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(node.outputs["Shader"], output.inputs["Surface"])
+    return material
+
+
+def test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour():
+    surface = materials.surface_of(diffuse_group("Red wall", (0.7, 0.1, 0.05)))
+    np.testing.assert_allclose(surface.reflectance, [0.7, 0.1, 0.05], rtol=1e-6)
+    assert not surface.problems, surface.problems
+
+
+def test_a_group_inside_a_group_and_an_unconnected_group_output():
+    inner = diffuse_group("Inner", (0.0, 0.0, 0.0)).node_tree.nodes["Group"].node_tree
+    outer = bpy.data.node_groups.new("Outer", "ShaderNodeTree")
+    if bpy.app.version >= (4, 0, 0):
+        outer.interface.new_socket("Tint", in_out="INPUT", socket_type="NodeSocketColor")
+        outer.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
+    else:
+        outer.inputs.new("NodeSocketColor", "Tint")
+        outer.outputs.new("NodeSocketShader", "Shader")
+    group_in, group_out = outer.nodes.new("NodeGroupInput"), outer.nodes.new("NodeGroupOutput")
+    nested = outer.nodes.new("ShaderNodeGroup")
+    nested.node_tree = inner
+    outer.links.new(group_in.outputs["Tint"], nested.inputs["Color"])
+    outer.links.new(nested.outputs["Shader"], group_out.inputs["Shader"])
+    material = bpy.data.materials.new("Nested")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    node = nodes.new("ShaderNodeGroup")
+    node.node_tree = outer
+    node.inputs["Tint"].default_value = (0.2, 0.4, 0.6, 1.0)
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(node.outputs["Shader"], output.inputs["Surface"])
+    np.testing.assert_allclose(materials.surface_of(material).reflectance, [0.2, 0.4, 0.6], rtol=1e-6)
+
+    # Nothing connected to the group's output: Cycles renders black, and so does the bake.
+    outer.links.remove(group_out.inputs["Shader"].links[0])
+    np.testing.assert_array_equal(materials.surface_of(material).reflectance, [0.0, 0.0, 0.0])
+
+
+def test_a_colour_above_one_is_clamped_and_named():
+    surface = materials.surface_of(scenes.diffuse("Too bright", (1.5, 0.5, -0.2)))
+    np.testing.assert_allclose(surface.reflectance, [materials.MAX_REFLECTANCE, 0.5, 0.0], rtol=1e-6)
+    warning = materials.warning_for("Too bright", surface)
+    assert warning and "Too bright" in warning and "outside 0-1" in warning, warning
+
+
+def test_a_scene_with_no_light_says_so_before_any_form_factor():
+    scenes.clear_scene()
+    scenes.furnace_box(0.5, 0.0)
+    before = harness.file_state()
+    start = time.perf_counter()
+    try:
+        addon.bake(bpy.context.scene, element_size=0.05, hemicube_resolution=256)
+    except pipeline.BakeError as error:
+        assert "Nothing lights the scene" in str(error), error
+    else:
+        raise AssertionError("a scene with no light baked")
+    # 2,400 elements at resolution 256 take tens of seconds of form factors; the refusal takes none.
+    assert time.perf_counter() - start < 5.0, time.perf_counter() - start
+    assert harness.file_state() == before
+
+
+def test_a_resolution_beyond_the_core_is_refused_with_the_range():
+    scenes.clear_scene()
+    scenes.furnace_box(0.5, 1.0)
+    for resolution in (2048, 8):
+        try:
+            addon.bake(bpy.context.scene, hemicube_resolution=resolution)
+        except pipeline.BakeError as error:
+            assert "between 16 and 1024" in str(error), error
+        else:
+            raise AssertionError("resolution %d baked" % resolution)
+    settings = bpy.context.scene.radiosity
+    settings.hemicube_resolution = 2048
+    assert settings.hemicube_resolution == 1024, settings.hemicube_resolution
+
+
+class RecordingLayout:
+    """Stands in for Blender's UILayout: records the labels a panel draws."""
+
+    def __init__(self, drawn):
+        self.drawn = drawn
+
+    def __getattr__(self, name):
+        return lambda *a, **k: RecordingLayout(self.drawn)
+
+    def label(self, text="", **_):
+        self.drawn.append(text)
+
+
+def test_the_summary_wraps_at_the_sidebars_width():
+    """At the sidebar's default width (and UI scale 1) no summary line is longer than fits; the
+    lines together still say all of it."""
+    scenes.clear_scene()
+    scenes.furnace_box(0.5, 1.0)
+    addon.bake(bpy.context.scene, element_size=0.25, hemicube_resolution=32)
+    settings = bpy.context.scene.radiosity
+    context = SimpleNamespace(scene=bpy.context.scene, region=SimpleNamespace(width=320),
+                              preferences=bpy.context.preferences)
+    drawn = []
+    ui.draw_panel(RecordingLayout(drawn), context)
+    fits = 320 / ui.CHARACTER_PIXELS
+    summary = [line for line in drawn if line]
+    assert all(len(line) <= fits for line in summary), [line for line in summary if len(line) > fits]
+    text = " ".join(summary)
+    for part in [settings.last_report] + settings.last_accuracy.split("; "):
+        assert " ".join(part.split()) in text, part
+
+
+harness.run(test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour,
+            test_a_group_inside_a_group_and_an_unconnected_group_output,
+            test_a_colour_above_one_is_clamped_and_named,
+            test_a_scene_with_no_light_says_so_before_any_form_factor,
+            test_a_resolution_beyond_the_core_is_refused_with_the_range,
+            test_the_summary_wraps_at_the_sidebars_width)
