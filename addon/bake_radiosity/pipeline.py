@@ -9,6 +9,7 @@ import bpy
 
 from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
                writeback)
+from .errors import BakeError  # noqa: F401  (pipeline.BakeError, as callers know it)
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
@@ -19,10 +20,6 @@ QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
 METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
                  "hierarchical": "hierarchical"}
 TARGETS = ("ORIGINAL", "COPIES")
-
-
-class BakeError(RuntimeError):
-    """A bake that cannot run; the message says why in words an artist can act on."""
 
 
 def settings_of(scene, overrides=None):
