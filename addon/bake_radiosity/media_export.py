@@ -1,4 +1,4 @@
-"""Participating media of the visible scene as the core's voxel grids: the insides of meshes whose
+"""Participating media of the rendered scene as the core's voxel grids: the insides of meshes whose
 material has a volume shader, and Volume objects (OpenVDB files), all on one world lattice of
 `zone_size` cells. Coefficients come from the core's principled_volume (media_materials.py)."""
 

@@ -51,7 +51,7 @@ class BakeJob:
         self.exported = export.export_scene(depsgraph, view_layer)
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
-            raise BakeError("Nothing to bake: no visible mesh in view layer '%s'" % view_layer.name)
+            raise BakeError("Nothing to bake: no mesh renders in view layer '%s'" % view_layer.name)
         self.warnings = list(self.exported.warnings)
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
         self.warnings += self.media.warnings
