@@ -18,6 +18,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
+export = sys.modules[harness.MODULE + ".export"]
 
 # A 1 m room of 4 x 4 faces a side, one element a face: a bake takes a fraction of a second.
 # A fixed method and tolerance, so that two bakes of the same light sum the same way.
@@ -161,6 +162,40 @@ def test_viewport_hidden_lamps_bake_as_they_render():
     print(named[0])
 
 
+def instancing_plane(name, location):
+    """A plane whose geometry nodes put a cube on each of its corners and keep the plane too."""
+    plane = scenes.mesh_object(name, [scenes.grid(location, (0.2, 0, 0), (0, 0.2, 0), 1, 1) + (0,)])
+    tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
+    tree.inputs.new("NodeSocketGeometry", "Geometry")
+    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    nodes, links = tree.nodes, tree.links
+    group_in, group_out = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    on_points, cube, join = (nodes.new("GeometryNodeInstanceOnPoints"), nodes.new("GeometryNodeMeshCube"),
+                             nodes.new("GeometryNodeJoinGeometry"))
+    cube.inputs["Size"].default_value = (0.05, 0.05, 0.05)
+    links.new(group_in.outputs[0], on_points.inputs["Points"])
+    links.new(cube.outputs[0], on_points.inputs["Instance"])
+    links.new(on_points.outputs[0], join.inputs[0])
+    links.new(group_in.outputs[0], join.inputs[0])
+    links.new(join.outputs[0], group_out.inputs[0])
+    plane.modifiers.new("Cubes", "NODES").node_group = tree
+    return plane
+
+
+def test_instancers_show_themselves_as_in_renders():
+    room()
+    shown = instancing_plane("Shown", (0.2, 0.2, 0.3))
+    hidden = instancing_plane("Hidden", (0.6, 0.6, 0.3))
+    # Show Instancer: the viewport and renders may differ; the bake follows renders.
+    shown.show_instancer_for_viewport = False
+    hidden.show_instancer_for_render = False
+    view_layer, depsgraph = pipeline.view_layer_and_depsgraph(bpy.context.scene)
+    exported = export.export_scene(depsgraph, view_layer)
+    parts = sorted((p.object_name, p.is_instance) for p in exported.parts)
+    print(parts)
+    assert parts == sorted([("Room", False), ("Shown", False)] + [("Shown", True)] * 4 + [("Hidden", True)] * 4), parts
+
+
 def emission_node(light):
     light.use_nodes = True
     return next(n for n in light.node_tree.nodes if n.type == "EMISSION")
@@ -262,6 +297,7 @@ def test_repeated_lamp_warnings_said_once():
 
 
 harness.run(test_lamp_disabled_in_renders_adds_no_light, test_mesh_disabled_in_renders_casts_no_shadow,
-            test_instanced_collection_follows_render_visibility, test_viewport_hidden_lamps_bake_as_they_render,
+            test_instanced_collection_follows_render_visibility, test_instancers_show_themselves_as_in_renders,
+            test_viewport_hidden_lamps_bake_as_they_render,
             test_lamp_node_tree_scales_the_lamp, test_lamp_node_tree_that_varies_is_named,
             test_negative_lamp_is_named, test_repeated_lamp_warnings_said_once)

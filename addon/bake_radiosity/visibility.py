@@ -76,14 +76,13 @@ class _ViewLayerRender:
         return found
 
 
-def _makes_instances(evaluated):
-    return evaluated.is_instancer or len(evaluated.particle_systems) > 0
-
-
-def _renders_itself(evaluated):
-    """An object that makes instances (particles, instancing, geometry nodes) shows itself in
-    renders only with Instancing > Show Instancer > Render (BKE_object_visibility)."""
-    return not _makes_instances(evaluated) or evaluated.original.show_instancer_for_render
+def _renders_itself(evaluated, instancers):
+    """An object that makes instances (instancing, particles, geometry nodes) shows itself in
+    renders only with Instancing > Show Instancer > Render (BKE_object_visibility). Geometry-node
+    instances do not set is_instancer: `instancers` holds the objects seen making instances."""
+    makes_instances = (evaluated.is_instancer or len(evaluated.particle_systems) > 0
+                       or evaluated.original in instancers)
+    return not makes_instances or evaluated.original.show_instancer_for_render
 
 
 def rendered_instances(depsgraph, view_layer, warnings=None, is_output=lambda original: False):
@@ -92,7 +91,7 @@ def rendered_instances(depsgraph, view_layer, warnings=None, is_output=lambda or
     be baked because the viewport's depsgraph lacks them, except the bake's own output
     (`is_output` of the original object), which is never baked anyway."""
     render = _ViewLayerRender(view_layer)
-    listed = set()
+    listed, instancers, undecided = set(), set(), []
     for instance in depsgraph.object_instances:
         obj = instance.object
         if instance.is_instance:
@@ -100,16 +99,26 @@ def rendered_instances(depsgraph, view_layer, warnings=None, is_output=lambda or
             parent = instance.parent.original if instance.parent is not None else None
             if parent is None or parent not in render.objects:
                 continue
+            instancers.add(parent)
             if (parent.instance_type == "COLLECTION" and parent.instance_collection is not None
                     and obj.original not in render.through(parent.instance_collection)):
                 continue
             yield Instance(obj, instance.matrix_world.copy(), True)
             continue
         listed.add(obj.original)
-        if obj.original in render.objects and _renders_itself(obj):
+        if obj.original not in render.objects:
+            continue
+        if obj.original.show_instancer_for_render:
             yield Instance(obj, instance.matrix_world.copy(), False)
+        else:
+            # Shown only if it makes no instances; geometry-node instances come after it in the
+            # list, so decide once all have been seen.
+            undecided.append(Instance(obj, instance.matrix_world.copy(), False))
+    for candidate in undecided:
+        if _renders_itself(candidate.object, instancers):
+            yield candidate
 
-    not_evaluated, instancers = [], []
+    not_evaluated, hidden_instancers = [], []
     for original in sorted(render.objects - listed, key=lambda o: o.name):
         if (original.type not in LIGHTING_TYPES and original.instance_type == "NONE") or is_output(original):
             continue
@@ -119,18 +128,18 @@ def rendered_instances(depsgraph, view_layer, warnings=None, is_output=lambda or
             continue
         # Hidden in the viewport (eye icon) but evaluated: bake it as F12 renders it.
         if evaluated.is_instancer:
-            instancers.append(original.name)
-        if original.type in LIGHTING_TYPES and _renders_itself(evaluated):
+            hidden_instancers.append(original.name)
+        if original.type in LIGHTING_TYPES and _renders_itself(evaluated, instancers):
             yield Instance(evaluated, evaluated.matrix_world.copy(), False)
     if warnings is not None:
         if not_evaluated:
             warnings.append(listing("Disabled in viewports but not in renders, so not baked (Blender does not "
                                     "evaluate them for the viewport; enable them in viewports, or disable them "
                                     "in renders)", "object", not_evaluated))
-        if instancers:
+        if hidden_instancers:
             warnings.append(listing("Instances made by objects hidden in the viewport are not baked, though they "
                                     "render (Blender does not list them for the viewport; unhide the objects)",
-                                    "object", instancers))
+                                    "object", hidden_instancers))
 
 
 def listing(problem, noun, items):
