@@ -189,11 +189,21 @@ def test_instancers_show_themselves_as_in_renders():
     # Show Instancer: the viewport and renders may differ; the bake follows renders.
     shown.show_instancer_for_viewport = False
     hidden.show_instancer_for_render = False
+    # An instancer of the older kind (instancing on vertices) with its viewport flag off.
+    verts = scenes.mesh_object("Verts", [scenes.grid((0.4, 0.2, 0.6), (0.2, 0, 0), (0, 0.2, 0), 1, 1) + (0,)])
+    verts.instance_type = "VERTS"
+    verts.show_instancer_for_viewport = False
+    bpy.data.objects["Key"].parent = verts
     view_layer, depsgraph = pipeline.view_layer_and_depsgraph(bpy.context.scene)
     exported = export.export_scene(depsgraph, view_layer)
     parts = sorted((p.object_name, p.is_instance) for p in exported.parts)
-    print(parts)
-    assert parts == sorted([("Room", False), ("Shown", False)] + [("Shown", True)] * 4 + [("Hidden", True)] * 4), parts
+    print(parts, exported.warnings)
+    assert parts == sorted([("Room", False), ("Shown", False), ("Verts", False)] + [("Shown", True)] * 4
+                           + [("Hidden", True)] * 4), parts
+    # The key lamp on each of the four vertices (offset by its own location).
+    on_vertices = [light for light in exported.lights if light["position"][2] > 1.2]
+    assert len(on_vertices) == 4, exported.lights
+    assert not exported.warnings, exported.warnings
 
 
 def emission_node(light):

@@ -126,8 +126,10 @@ def rendered_instances(depsgraph, view_layer, warnings=None, is_output=lambda or
         if not evaluated.is_evaluated:
             not_evaluated.append(original.name)
             continue
-        # Hidden in the viewport (eye icon) but evaluated: bake it as F12 renders it.
-        if evaluated.is_instancer:
+        # Evaluated but not listed: hidden in the viewport (eye icon), or an instancer whose Show
+        # Instancer is off in the viewport. Bake it as F12 renders it; the instances of a hidden
+        # one are not listed either.
+        if evaluated.is_instancer and original not in instancers:
             hidden_instancers.append(original.name)
         if original.type in LIGHTING_TYPES and _renders_itself(evaluated, instancers):
             yield Instance(evaluated, evaluated.matrix_world.copy(), False)
