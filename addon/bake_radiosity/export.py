@@ -1,14 +1,17 @@
-"""The visible scene as flat arrays for the core: world-space polygons with their materials,
-plus lamps. Reads evaluated meshes (modifiers applied, instances included) with foreach_get."""
+"""The rendered scene as flat arrays for the core: world-space polygons with their materials,
+plus lamps. Reads evaluated meshes (modifiers applied, instances included) with foreach_get.
+Which objects and lamps take part is what Cycles renders (visibility.py)."""
 
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import lights, materials, media_materials
+from . import lights, materials, media_materials, visibility
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
 COPY_TAG = "radiosity_bake_copy"
+# Volume objects a bake made (media_writeback.py) carry this one; output too.
+MEDIUM_TAG = "radiosity_bake_medium"
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 
 
@@ -50,15 +53,18 @@ class ExportedScene:
 
 def export_scene(depsgraph, view_layer):
     builder = _Builder()
-    for instance in depsgraph.object_instances:
+    for instance in visibility.rendered_instances(depsgraph, view_layer, builder.warnings, is_bake_output):
         obj = instance.object
-        if not _is_visible(instance, view_layer):
-            continue
         if obj.type == "LIGHT":
             builder.add_light(obj, instance.matrix_world)
-        elif obj.type in GEOMETRY_TYPES and not obj.original.get(COPY_TAG) and not media_materials.is_medium_only(obj):
+        elif obj.type in GEOMETRY_TYPES and not is_bake_output(obj.original) and not media_materials.is_medium_only(obj):
             builder.add_geometry(instance)  # a medium-only mesh has no surface in Cycles; media_export reads it
     return builder.finish()
+
+
+def is_bake_output(original):
+    """Whether an (original) object is one a bake made."""
+    return bool(original.get(COPY_TAG) or original.get(MEDIUM_TAG))
 
 
 def polygon_normals_areas(positions, face_offsets, corner_vertices):
@@ -78,12 +84,6 @@ def polygon_normals_areas(positions, face_offsets, corner_vertices):
     return normals, 0.5 * length
 
 
-def _is_visible(instance, view_layer):
-    if instance.is_instance:
-        return instance.parent is not None and instance.parent.original.visible_get(view_layer=view_layer)
-    return instance.show_self and instance.object.original.visible_get(view_layer=view_layer)
-
-
 class _Builder:
     def __init__(self):
         self.positions, self.counts, self.corners = [], [], []
@@ -91,6 +91,7 @@ class _Builder:
         self.material_ids = {}          # material name (None = no material) -> id
         self.surfaces = []              # id -> Surface
         self.parts, self.lights, self.warnings = [], [], []
+        self.lamp_problems = {}         # problem -> [lamp name or (name, detail)], said once each
         self.vertex_total = self.polygon_total = self.corner_total = 0
 
     def material_id(self, material):
@@ -153,11 +154,15 @@ class _Builder:
         self.corner_total += len(loop_vertex)
 
     def add_light(self, obj, matrix_world):
+        if obj.data.type == "AREA" and getattr(getattr(obj.data, "cycles", None), "is_portal", False):
+            return
+        strength, problems = lights.lamp_strength(obj)
+        self._note_lamp_problems(problems)
+        if not strength.any():
+            return  # Cycles leaves out a lamp of strength 0; an area lamp then blocks no light either
         if obj.data.type == "AREA":
-            if getattr(getattr(obj.data, "cycles", None), "is_portal", False):
-                return
-            corners, radiance, warnings = lights.area_polygon(obj, matrix_world)
-            self.warnings += warnings
+            corners, radiance, problems = lights.area_polygon(obj, matrix_world, strength)
+            self._note_lamp_problems(problems)
             # Each lamp is its own black emitter (own material id: no blending with neighbours).
             self.surfaces.append(materials.Surface(np.zeros(3), radiance))
             self.positions.append(corners)
@@ -168,11 +173,17 @@ class _Builder:
             self.polygon_total += 1
             self.corner_total += len(corners)
             return
-        entry, warnings = lights.point_like(obj, matrix_world)
-        self.warnings += warnings
+        entry, problems = lights.point_like(obj, matrix_world, strength)
+        self._note_lamp_problems(problems)
         self.lights.append(entry)
 
+    def _note_lamp_problems(self, problems):
+        for problem, item in problems:
+            self.lamp_problems.setdefault(problem, []).append(item)
+
     def finish(self):
+        # One warning per problem, however many lamps have it (thirty bulbs with a radius: one line).
+        self.warnings += [visibility.listing(problem, "lamp", items) for problem, items in self.lamp_problems.items()]
         self._mark_shared_meshes()
         counts = np.concatenate(self.counts) if self.counts else np.zeros(0, np.int32)
         material = np.concatenate(self.polygon_material) if self.polygon_material else np.zeros(0, np.int32)

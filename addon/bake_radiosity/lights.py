@@ -8,41 +8,119 @@ strength to colour x power and then:
 - sun: irradiance strength W/m^2 on a surface facing it.
 - area: one-sided radiance strength / (4 A) from the lamp's -Z side, A = size_x * size_y
   (times the object's scale, times pi/4 for disk and ellipse).
+
+A lamp's node tree is its shader, and the shader's emission multiplies that strength
+(lamp_strength below). Lamps whose strength is 0 add nothing and are left out, as Cycles leaves
+them out (Light::has_contribution in scene/light.cpp: strength 0, or a shader without emission).
+
+Problems are returned as (problem, item) pairs, not sentences, so that export.py can say each
+problem once for all the lamps that have it (visibility.listing).
 """
 
 import math
 
 import numpy as np
 
+from . import materials
+from .errors import BakeError
+
 # Disk and ellipse lamps become polygons with this many sides (0.6% less area than the ellipse;
 # the radiance is kept, so the emitted power is 0.6% low).
 ELLIPSE_SIDES = 32
 
+RADIUS = "Radius treated as 0, hard shadows"
+SUN_ANGLE = "Sun angle treated as 0, hard shadows"
+SPREAD = "Spread ignored, the lamp emits over the full hemisphere"
+NODES_VARY = ("Lamp node tree not followed (nodes drive its Emission, which the bake cannot average); "
+              "baked as the lamp without its node tree")
+NODES_EMIT_NOTHING = "Lamp node tree has no shader at its Light Output: the lamp emits nothing, as in Cycles"
 
-def point_like(light_object, matrix):
-    """A core light dict for a point, spot or sun lamp, and a list of warnings."""
+
+def lamp_strength(light_object):
+    """Cycles' strength of a lamp (3,): colour x power (W; sun: W/m^2) x its node tree's constant
+    emission, and a list of (problem, item) pairs. Raises BakeError, naming the lamp, if the
+    strength is negative or not a number: the bake only adds light.
+
+    Cycles (intern/cycles/blender/shader.cpp, BlenderSync::sync_lights) uses the lamp's node tree
+    as its shader when use_nodes is on, otherwise an Emission of colour 1 and strength 1; the
+    kernel (kernel/light/sample.h, light_sample_shader_eval) multiplies the shader's emission by
+    the lamp's strength (klight->strength = colour x power); and the Emission node's closure
+    weight is Color x Strength (scene/shader_nodes.cpp, EmissionNode::compile). Blender's
+    Emission node defaults to Strength 1 and white, so the default lamp node tree changes nothing.
+    """
     light = light_object.data
-    strength = np.array(light.color[:3]) * light.energy
-    warnings = []
+    factor, problems = node_tree_factor(light_object)
+    strength = np.array(light.color[:3], dtype=np.float64) * float(light.energy) * factor
+    if not np.isfinite(strength).all() or (strength < 0.0).any():
+        name, unit = ("Strength", "W/m²") if light.type == "SUN" else ("Power", "W")
+        if light.energy < 0.0:
+            cause = "its %s %g %s is negative" % (name, light.energy, unit)
+        elif (factor < 0.0).any():
+            cause = "its node tree's Emission is negative"
+        else:
+            cause = "its %s is not a number" % name
+        raise BakeError("Light '%s': %s. The bake only adds light: set it to 0 or more" % (light_object.name, cause))
+    return strength, problems
+
+
+def node_tree_factor(light_object):
+    """What the lamp's node tree multiplies its colour x power by (3,), and (problem, item) pairs.
+
+    The Light Output's Surface followed to an Emission node whose Color and Strength are
+    constants: Color x Strength. Nothing at the output: 0 (Cycles renders no light). Anything
+    that varies over the lamp or its directions (a texture, an IES profile, Light Falloff, math
+    nodes, any shader but Emission): 1, with a problem naming the lamp, since the bake cannot
+    evaluate it."""
+    light = light_object.data
+    if not light.use_nodes or light.node_tree is None:
+        return np.ones(3), []
+    output = _light_output(light.node_tree)
+    if output is None or not output.inputs["Surface"].is_linked:
+        return np.zeros(3), [(NODES_EMIT_NOTHING, light_object.name)]
+    node = materials._linked_node(output.inputs["Surface"])
+    if node is None:
+        return np.zeros(3), [(NODES_EMIT_NOTHING, light_object.name)]
+    if node.type != "EMISSION":
+        return np.ones(3), [(NODES_VARY, (light_object.name, "Light Output fed by '%s'" % node.bl_label))]
+    color, strength = node.inputs["Color"], node.inputs["Strength"]
+    for socket in (strength, color):
+        if socket.is_linked:
+            source = materials._linked_node(socket)
+            label = source.bl_label if source is not None else "nothing"
+            return np.ones(3), [(NODES_VARY, (light_object.name, "%s from '%s'" % (socket.name, label)))]
+    return np.array(color.default_value[:3], dtype=np.float64) * float(strength.default_value), []
+
+
+def _light_output(tree):
+    """The Light Output Cycles uses: the active one of those for All or Cycles (as
+    materials._surface_output picks a material's)."""
+    outputs = [n for n in tree.nodes if n.type == "OUTPUT_LIGHT" and n.target in {"ALL", "CYCLES"}]
+    active = [n for n in outputs if n.is_active_output]
+    return (active or outputs or [None])[0]
+
+
+def point_like(light_object, matrix, strength):
+    """A core light dict for a point, spot or sun lamp of `strength` (lamp_strength), and a list
+    of (problem, item) pairs."""
+    light = light_object.data
+    problems = []
     if light.type in {"POINT", "SPOT"}:
         if light.shadow_soft_size > 0.0:
-            warnings.append("Light '%s': radius %.3g m is treated as a point (hard shadows)"
-                            % (light_object.name, light.shadow_soft_size))
+            problems.append((RADIUS, (light_object.name, "%.3g m" % light.shadow_soft_size)))
         entry = {"type": light.type, "position": tuple(matrix.translation),
                  "intensity": tuple(strength / (4.0 * math.pi))}
         if light.type == "SPOT":
-            entry.update(direction=_emitting_axis(matrix), half_angle=0.5 * light.spot_size,
+            entry.update(direction=_emitting_axis(light_object, matrix), half_angle=0.5 * light.spot_size,
                          blend=light.spot_blend)
-        return entry, warnings
+        return entry, problems
     if light.angle > 0.0:
-        warnings.append("Light '%s': sun angle %.3g deg is treated as 0 (hard shadows)"
-                        % (light_object.name, math.degrees(light.angle)))
-    return {"type": "SUN", "direction": _emitting_axis(matrix), "irradiance": tuple(strength)}, warnings
+        problems.append((SUN_ANGLE, (light_object.name, "%.3g deg" % math.degrees(light.angle))))
+    return {"type": "SUN", "direction": _emitting_axis(light_object, matrix), "irradiance": tuple(strength)}, problems
 
 
-def area_polygon(light_object, matrix):
-    """World-space corners (N,3) of an area lamp, ordered so the polygon faces the lamp's -Z,
-    its emitted radiance (3,), and a list of warnings."""
+def area_polygon(light_object, matrix, strength):
+    """World-space corners (N,3) of an area lamp of `strength` (lamp_strength), ordered so the
+    polygon faces the lamp's -Z, its emitted radiance (3,), and a list of (problem, item) pairs."""
     light = light_object.data
     size_x = light.size
     size_y = light.size_y if light.shape in {"RECTANGLE", "ELLIPSE"} else light.size
@@ -61,15 +139,16 @@ def area_polygon(light_object, matrix):
     # A mirroring transform flips the winding but not the lamp's -Z: keep the polygon facing -Z.
     if np.linalg.det(m[:3, :3]) < 0.0:
         corners = corners[::-1]
-    warnings = []
+    problems = []
     if light.spread < math.pi - 1e-6:
-        warnings.append("Light '%s': spread %.0f deg is ignored (emits over the full hemisphere)"
-                        % (light_object.name, math.degrees(light.spread)))
-    strength = np.array(light.color[:3]) * light.energy
+        problems.append((SPREAD, (light_object.name, "%.0f deg" % math.degrees(light.spread))))
     radiance = strength / (4.0 * area) if area > 0.0 else np.zeros(3)
-    return corners, radiance, warnings
+    return corners, radiance, problems
 
 
-def _emitting_axis(matrix):
+def _emitting_axis(light_object, matrix):
     axis = -np.array(matrix.col[2][:3], dtype=np.float64)
-    return tuple(axis / np.linalg.norm(axis))
+    length = np.linalg.norm(axis)
+    if not length > 0.0 or not np.isfinite(axis).all():
+        raise BakeError("Light '%s' has no direction: its object is scaled to 0 along Z" % light_object.name)
+    return tuple(axis / length)

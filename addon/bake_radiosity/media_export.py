@@ -1,4 +1,4 @@
-"""Participating media of the visible scene as the core's voxel grids: the insides of meshes whose
+"""Participating media of the rendered scene as the core's voxel grids: the insides of meshes whose
 material has a volume shader, and Volume objects (OpenVDB files), all on one world lattice of
 `zone_size` cells. Coefficients come from the core's principled_volume (media_materials.py)."""
 
@@ -8,11 +8,9 @@ from dataclasses import dataclass, field
 import bpy
 import numpy as np
 
-from . import media_materials, native
-from .export import COPY_TAG, GEOMETRY_TYPES, _corner_order, _is_visible, _read
+from . import media_materials, native, visibility
+from .export import GEOMETRY_TYPES, MEDIUM_TAG, _corner_order, _read, is_bake_output  # noqa: F401 (MEDIUM_TAG)
 
-# Volume objects a bake made carry this property; they are output, never input.
-MEDIUM_TAG = "radiosity_bake_medium"
 # Automatic zone size aims at this many cells over the media's boxes: the exchange factors grow
 # with the square of the zone count (docs/volumes.md), 16^3 zones bake in seconds.
 ZONE_BUDGET = 4096
@@ -39,11 +37,13 @@ class ExportedMedia:
 
 
 def export_media(depsgraph, view_layer, zone_size):
-    """Every visible medium, voxelised at `zone_size` (0: automatic, see ZONE_BUDGET)."""
+    """Every medium Cycles renders (visibility.py), voxelised at `zone_size` (0: automatic, see
+    ZONE_BUDGET)."""
     sources, warnings = [], []
-    for instance in depsgraph.object_instances:
+    # export_scene already warned about objects that render but cannot be baked.
+    for instance in visibility.rendered_instances(depsgraph, view_layer):
         obj = instance.object
-        if not _is_visible(instance, view_layer) or obj.original.get(MEDIUM_TAG) or obj.original.get(COPY_TAG):
+        if is_bake_output(obj.original):
             continue
         material = _volume_material(obj, warnings) if obj.type in GEOMETRY_TYPES | {"VOLUME"} else None
         if material is not None:

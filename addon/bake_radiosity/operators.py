@@ -49,7 +49,7 @@ class _Worker:
 class RADIOSITY_OT_bake(bpy.types.Operator):
     bl_idname = "radiosity.bake"
     bl_label = "Bake Radiosity"
-    bl_description = ("Bake diffuse light (radiosity) of the visible scene into a colour attribute. "
+    bl_description = ("Bake diffuse light (radiosity) of what Cycles renders into a colour attribute. "
                       "Esc cancels")
     bl_options = {"REGISTER", "UNDO"}
 

@@ -10,6 +10,7 @@ import bpy
 
 from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
                writeback)
+from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
@@ -20,11 +21,6 @@ QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
 METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
                  "hierarchical": "hierarchical"}
 TARGETS = ("ORIGINAL", "COPIES")
-
-
-class BakeError(RuntimeError):
-    """A bake that cannot run; the message says why in words an artist can act on. Every failure
-    of a bake reaches the operators and the batch command as this one type."""
 
 
 @contextlib.contextmanager
@@ -73,7 +69,7 @@ class BakeJob:
         self.exported = export.export_scene(depsgraph, view_layer)
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
-            raise BakeError("Nothing to bake: no visible mesh in view layer '%s'" % view_layer.name)
+            raise BakeError("Nothing to bake: no mesh renders in view layer '%s'" % view_layer.name)
         self.warnings = list(self.exported.warnings)
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
         self.warnings += self.media.warnings
