@@ -154,9 +154,54 @@ def test_the_summary_wraps_at_the_sidebars_width():
         assert " ".join(part.split()) in text, part
 
 
+def linked_duplicates_under_a_panel():
+    """A floor under an emitting panel and two blocks sharing one mesh (Alt+D): one under the panel,
+    one in the far corner. Their light differs, so one mesh cannot hold both."""
+    scenes.clear_scene()
+    scenes.mesh_object("Floor", [scenes.grid((-2, -2, 0), (4, 0, 0), (0, 4, 0), 4, 4) + (0,)],
+                       [scenes.diffuse("Floor", (0.5, 0.5, 0.5))])
+    scenes.mesh_object("Panel", [scenes.grid((-0.25, -0.25, 1.0), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
+                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 10.0)])
+    near = scenes.mesh_object("Near", [scenes.grid((-0.1, -0.1, 0.2), (0.2, 0, 0), (0, 0.2, 0), 1, 1) + (0,)],
+                              [scenes.diffuse("Block", (0.8, 0.8, 0.8))])
+    far = bpy.data.objects.new("Far", near.data)
+    far.location = (1.6, 1.6, 0.0)
+    bpy.context.scene.collection.objects.link(far)
+    return near, far
+
+
+def test_linked_duplicates_are_named_or_get_their_own_meshes():
+    near, far = linked_duplicates_under_a_panel()
+    settings = bpy.context.scene.radiosity
+    settings.element_size, settings.hemicube_resolution = 0.5, 64
+    shared = near.data
+    summary = addon.bake(bpy.context.scene)
+    named = [w for w in summary["warnings"] if "linked duplicate" in w]
+    assert named and "2 linked duplicate(s) (Far, Near)" in named[0] and "Separate Linked Duplicates" in named[0], \
+        summary["warnings"]
+    assert shared.color_attributes.get("Radiosity") is None and far.data == shared
+
+    # On, through the panel's property and the operator, as one undo step.
+    settings.separate_linked_duplicates = True
+    bpy.ops.ed.undo_push(message="before bake")
+    before = harness.file_state()
+    assert bpy.ops.radiosity.bake("EXEC_DEFAULT", True) == {"FINISHED"}
+    near, far = bpy.data.objects["Near"], bpy.data.objects["Far"]
+    assert near.data != far.data, "the linked duplicates still share one mesh"
+    lit_near = harness.corner_colors(near.data, "Radiosity").mean()
+    lit_far = harness.corner_colors(far.data, "Radiosity").mean()
+    print("block under the panel %.4f, in the corner %.4f" % (lit_near, lit_far))
+    assert lit_near > 3.0 * lit_far > 0.0, (lit_near, lit_far)
+    bpy.ops.ed.undo()
+    assert harness.file_state() == before, "one undo did not take back the bake and the new meshes"
+    assert bpy.data.objects["Near"].data == bpy.data.objects["Far"].data
+
+
+
 harness.run(test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour,
             test_a_group_inside_a_group_and_an_unconnected_group_output,
             test_a_colour_above_one_is_clamped_and_named,
             test_a_scene_with_no_light_says_so_before_any_form_factor,
             test_a_resolution_beyond_the_core_is_refused_with_the_range,
-            test_the_summary_wraps_at_the_sidebars_width)
+            test_the_summary_wraps_at_the_sidebars_width,
+            test_linked_duplicates_are_named_or_get_their_own_meshes)

@@ -32,6 +32,7 @@ class Part:
     material_names: list
     matrix_world: np.ndarray
     writable: bool = True
+    shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
 
 
 @dataclass
@@ -200,14 +201,15 @@ class _Builder:
         )
 
     def _mark_shared_meshes(self):
-        """A mesh shown by several objects can hold only one lighting: ORIGINAL skips it."""
+        """A mesh shown by several objects can hold only one lighting: ORIGINAL writes it only when
+        each object is to get a mesh of its own (writeback)."""
         users = {}
         for part in self.parts:
             users.setdefault(part.mesh_name, []).append(part)
         for name, parts in users.items():
-            if len(parts) > 1:
+            if name and len(parts) > 1:
                 for part in parts:
-                    part.writable = False
+                    part.shares_mesh = True
 
 
 def _corner_order(loop_start, loop_total, mirrored):

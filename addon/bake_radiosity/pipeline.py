@@ -14,7 +14,8 @@ from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
-                 "memory_budget", "hard_edge_angle", "attribute_name", "target", "zone_size", "media_folder")
+                 "memory_budget", "hard_edge_angle", "attribute_name", "target", "separate_linked_duplicates",
+                 "zone_size", "media_folder")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
 QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")

@@ -3,7 +3,7 @@
 import math
 
 import bpy
-from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 
 def _switch_to_custom(settings, _context):
@@ -105,6 +105,13 @@ class RadiositySettings(bpy.types.PropertyGroup):
         name="Attribute",
         description="Name of the face-corner colour attribute that receives the baked light",
         default="Radiosity",
+    )
+    separate_linked_duplicates: BoolProperty(
+        name="Separate Linked Duplicates",
+        description="Objects that share one mesh (linked duplicates, Alt+D) each get a mesh of their own when the "
+                    "light is written, so each keeps its own lighting (Target: Original Meshes; one undo step "
+                    "with the bake). Off: they light the scene but are not written",
+        default=False,
     )
     target: EnumProperty(
         name="Target",

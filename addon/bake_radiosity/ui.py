@@ -60,6 +60,8 @@ def draw_panel(layout, context):
     column.prop(settings, "hard_edge_angle")
     column.separator()
     column.prop(settings, "target")
+    if settings.target == "ORIGINAL":
+        column.prop(settings, "separate_linked_duplicates")
     column.prop(settings, "attribute_name")
     column.separator()
     column.prop(settings, "zone_size")

@@ -12,7 +12,8 @@ COLLECTION_NAME = "Radiosity Bake"
 def write(scene, exported, result, settings):
     """Writes `result` as `settings` ask and returns warnings about what could not be written."""
     if settings["target"] == "ORIGINAL":
-        return _write_original(exported, result["corner_radiance"], settings["attribute_name"])
+        return _write_original(exported, result["corner_radiance"], settings["attribute_name"],
+                               settings["separate_linked_duplicates"])
     return _write_copies(scene, exported, result, settings["attribute_name"])
 
 
@@ -32,15 +33,21 @@ def set_color_attribute(mesh, name, rgb):
     mesh.update()
 
 
-def _write_original(exported, corner_radiance, name):
-    written, refused = set(), []
+def _write_original(exported, corner_radiance, name, separate_linked_duplicates):
+    written, refused, shared, separated = set(), [], [], []
     for part in exported.parts:
         if not part.writable:
             refused.append(part.object_name)
             continue
+        if part.shares_mesh and not separate_linked_duplicates:
+            shared.append(part.object_name)
+            continue
         obj = bpy.data.objects.get(part.object_name)
         if obj is None or obj.type != "MESH" or part.object_name in written:
             continue
+        if part.shares_mesh and obj.data.users > 1:
+            obj.data = obj.data.copy()  # materials and attributes come along
+            separated.append(part.object_name)
         mesh = obj.data
         if _name_taken_by_other_attribute(mesh, name):
             refused.append(part.object_name)
@@ -49,13 +56,24 @@ def _write_original(exported, corner_radiance, name):
         rgb[part.corner_order] = corner_radiance[part.corner_start:part.corner_stop]
         set_color_attribute(mesh, name, rgb)
         written.add(part.object_name)
-    if not refused:
-        return []
-    names = sorted(set(refused))
-    return ["Not written onto %d object(s) (%s%s): instances, meshes shared by several objects, modifiers "
-            "that change the face count, or a non-colour attribute named '%s'. They still light the scene; "
-            "use Target: Subdivided Copies to get their light"
-            % (len(names), ", ".join(names[:5]), ", ..." if len(names) > 5 else "", name)]
+    warnings = []
+    if shared:
+        warnings.append("Not written onto %d linked duplicate(s) (%s), objects that share one mesh, which holds one "
+                        "lighting. They still light the scene; turn on Separate Linked Duplicates to give each its "
+                        "own mesh, or use Target: Subdivided Copies" % (len(set(shared)), _listed(shared)))
+    if separated:
+        warnings.append("Gave %d linked duplicate(s) a mesh of their own to hold their light (%s)"
+                        % (len(separated), _listed(separated)))
+    if refused:
+        warnings.append("Not written onto %d object(s) (%s): instances, modifiers that change the face count, or a "
+                        "non-colour attribute named '%s'. They still light the scene; use Target: Subdivided Copies "
+                        "to get their light" % (len(set(refused)), _listed(refused), name))
+    return warnings
+
+
+def _listed(names):
+    names = sorted(set(names))
+    return ", ".join(names[:5]) + (", ..." if len(names) > 5 else "")
 
 
 def _name_taken_by_other_attribute(mesh, name):
