@@ -198,10 +198,48 @@ def test_linked_duplicates_are_named_or_get_their_own_meshes():
 
 
 
+def room_lit_by_area_lamp(shape, size):
+    """The closed 2 m room of albedo 0.7, lit by a 100 W area lamp of `shape` facing down 10 cm
+    under the ceiling."""
+    scenes.clear_scene()
+    sides = [((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
+             ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
+             ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0))]
+    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in sides],
+                              [scenes.diffuse("Walls", (0.7, 0.7, 0.7))])
+    light = bpy.data.lights.new("Lamp", "AREA")
+    light.shape, light.size, light.energy = shape, size, 100.0
+    lamp = bpy.data.objects.new("Lamp", light)
+    lamp.location = (1.0, 1.0, 1.9)
+    bpy.context.scene.collection.objects.link(lamp)
+    return room
+
+
+def test_a_disk_lamp_costs_what_a_square_one_does():
+    """A 50 cm Disk lamp bakes at about the resolution of a Square one of the same area and power
+    (not at 1024 with turned hemi-cubes), and lights the room the same to within the 0.6 % of area
+    its 32-sided rim leaves out."""
+    results = {}
+    for shape, size in (("DISK", 0.5), ("SQUARE", 0.5 * np.sqrt(np.pi) / 2.0)):
+        room = room_lit_by_area_lamp(shape, size)
+        start = time.perf_counter()
+        summary = addon.bake(bpy.context.scene, quality="DRAFT")
+        seconds = time.perf_counter() - start
+        mean = harness.corner_colors(room.data, "Radiosity").mean()
+        print("%s: resolution %d x %d, %d elements, %.1f s, room mean %.5f"
+              % (shape, summary["resolution"], summary["hemicube_rotations"], summary["elements"], seconds, mean))
+        results[shape] = (summary["resolution"], summary["hemicube_rotations"], mean)
+    disk, square = results["DISK"], results["SQUARE"]
+    assert disk[1] == 1 and disk[0] <= 2 * square[0], (disk, square)
+    assert abs(disk[2] / square[2] - 1.0) < 0.02, (disk, square)
+
+
+
 harness.run(test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour,
             test_a_group_inside_a_group_and_an_unconnected_group_output,
             test_a_colour_above_one_is_clamped_and_named,
             test_a_scene_with_no_light_says_so_before_any_form_factor,
             test_a_resolution_beyond_the_core_is_refused_with_the_range,
             test_the_summary_wraps_at_the_sidebars_width,
-            test_linked_duplicates_are_named_or_get_their_own_meshes)
+            test_linked_duplicates_are_named_or_get_their_own_meshes,
+            test_a_disk_lamp_costs_what_a_square_one_does)

@@ -162,17 +162,17 @@ class _Builder:
         if not strength.any():
             return  # Cycles leaves out a lamp of strength 0; an area lamp then blocks no light either
         if obj.data.type == "AREA":
-            corners, radiance, problems = lights.area_polygon(obj, matrix_world, strength)
+            vertices, quads, radiance, problems = lights.area_quads(obj, matrix_world, strength)
             self._note_lamp_problems(problems)
             # Each lamp is its own black emitter (own material id: no blending with neighbours).
             self.surfaces.append(materials.Surface(np.zeros(3), radiance))
-            self.positions.append(corners)
-            self.counts.append(np.array([len(corners)], dtype=np.int32))
-            self.corners.append(np.arange(len(corners), dtype=np.int32) + self.vertex_total)
-            self.polygon_material.append(np.array([len(self.surfaces) - 1], dtype=np.int32))
-            self.vertex_total += len(corners)
-            self.polygon_total += 1
-            self.corner_total += len(corners)
+            self.positions.append(vertices)
+            self.counts.append(np.full(len(quads), 4, dtype=np.int32))
+            self.corners.append(quads.ravel().astype(np.int32) + self.vertex_total)
+            self.polygon_material.append(np.full(len(quads), len(self.surfaces) - 1, dtype=np.int32))
+            self.vertex_total += len(vertices)
+            self.polygon_total += len(quads)
+            self.corner_total += quads.size
             return
         entry, problems = lights.point_like(obj, matrix_world, strength)
         self._note_lamp_problems(problems)

@@ -24,9 +24,13 @@ import numpy as np
 from . import materials
 from .errors import BakeError
 
-# Disk and ellipse lamps become polygons with this many sides (0.6% less area than the ellipse;
-# the radiance is kept, so the emitted power is 0.6% low).
-ELLIPSE_SIDES = 32
+# Disk and ellipse lamps become ELLIPSE_GRID x ELLIPSE_GRID quads: a square grid mapped onto the
+# disk (the elliptical grid mapping, x sqrt(1 - y^2 / 2), y sqrt(1 - x^2 / 2)), whose rim is a
+# 16-gon with 2.6% less area than the ellipse. Cycles' radiance is power / (4 x the ellipse's
+# area); the grid's is raised by that share, so the lamp emits its whole power. One many-sided
+# polygon would be cut into hundreds of slivers by the element builder, and the smallest of them
+# would set the hemi-cube resolution of the whole bake.
+ELLIPSE_GRID = 4
 
 RADIUS = "Radius treated as 0, hard shadows"
 SUN_ANGLE = "Sun angle treated as 0, hard shadows"
@@ -118,32 +122,39 @@ def point_like(light_object, matrix, strength):
     return {"type": "SUN", "direction": _emitting_axis(light_object, matrix), "irradiance": tuple(strength)}, problems
 
 
-def area_polygon(light_object, matrix, strength):
-    """World-space corners (N,3) of an area lamp of `strength` (lamp_strength), ordered so the
-    polygon faces the lamp's -Z, its emitted radiance (3,), and a list of (problem, item) pairs."""
+def area_quads(light_object, matrix, strength):
+    """An area lamp of `strength` (lamp_strength) as world-space vertices (V,3) and quads (Q,4) of
+    vertex indices, each ordered so it faces the lamp's -Z; its emitted radiance (3,), and a list
+    of (problem, item) pairs. A rectangle is one quad, a disk or ellipse a grid of them."""
     light = light_object.data
     size_x = light.size
     size_y = light.size_y if light.shape in {"RECTANGLE", "ELLIPSE"} else light.size
     round_shape = light.shape in {"DISK", "ELLIPSE"}
+    cells = ELLIPSE_GRID if round_shape else 1
+    s, t = np.meshgrid(np.linspace(-1.0, 1.0, cells + 1), np.linspace(-1.0, 1.0, cells + 1), indexing="ij")
+    s, t = s.ravel(), t.ravel()
     if round_shape:
-        angles = np.linspace(0.0, -2.0 * math.pi, ELLIPSE_SIDES, endpoint=False)
-        local = np.column_stack([0.5 * size_x * np.cos(angles), 0.5 * size_y * np.sin(angles)])
-    else:
-        # Clockwise seen from +Z, so the polygon's normal is -Z.
-        local = 0.5 * np.array([[-size_x, -size_y], [-size_x, size_y], [size_x, size_y], [size_x, -size_y]])
+        s, t = s * np.sqrt(1.0 - 0.5 * t * t), t * np.sqrt(1.0 - 0.5 * s * s)
+    local = np.column_stack([0.5 * size_x * s, 0.5 * size_y * t])
+    i, j = np.meshgrid(np.arange(cells), np.arange(cells), indexing="ij")
+    first = (i * (cells + 1) + j).ravel()
+    # (i, j) -> (i, j + 1) -> (i + 1, j + 1) -> (i + 1, j): clockwise seen from +Z, facing -Z.
+    quads = np.stack([first, first + 1, first + cells + 2, first + cells + 1], axis=1)
     m = np.array(matrix)
-    corners = local @ m[:3, :2].T + m[:3, 3]
+    vertices = local @ m[:3, :2].T + m[:3, 3]
     scale_x = np.linalg.norm(m[:3, 0])
     scale_y = np.linalg.norm(m[:3, 1])
-    area = size_x * scale_x * size_y * scale_y * (math.pi / 4.0 if round_shape else 1.0)
-    # A mirroring transform flips the winding but not the lamp's -Z: keep the polygon facing -Z.
+    # The quads' own area (shoelace), so that they emit the lamp's whole power.
+    x, y = local[quads, 0], local[quads, 1]
+    area = 0.5 * abs(float((x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y).sum())) * scale_x * scale_y
+    # A mirroring transform flips the winding but not the lamp's -Z: keep the quads facing -Z.
     if np.linalg.det(m[:3, :3]) < 0.0:
-        corners = corners[::-1]
+        quads = quads[:, ::-1]
     problems = []
     if light.spread < math.pi - 1e-6:
         problems.append((SPREAD, (light_object.name, "%.0f deg" % math.degrees(light.spread))))
     radiance = strength / (4.0 * area) if area > 0.0 else np.zeros(3)
-    return corners, radiance, problems
+    return vertices, quads, radiance, problems
 
 
 def _emitting_axis(light_object, matrix):
