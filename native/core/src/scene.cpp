@@ -26,6 +26,8 @@ namespace {
 
 using detail::DVec3;
 
+double max_component(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
     throw InputError("polygon " + std::to_string(polygon) + ": " + what);
 }
@@ -298,6 +300,44 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
 }
+/// Emitting polygons emit from both sides, as in Cycles: each of their elements gets a twin on
+/// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
+/// front's vertices, so that everything that renders or traces the elements sees the two sides
+/// at exactly one place; its cut-edge bits follow its reversed corners.
+void add_back_sides(Elements& out, const ElementLimits& limits) {
+    const std::size_t fronts = out.size();
+    std::size_t emitting = 0;
+    for (std::size_t e = 0; e < fronts; ++e) emitting += max_component(out.emission[e]) > 0.0 ? 1 : 0;
+    if (emitting == 0) return;
+    if (fronts + emitting > limits.max_elements)
+        throw InputError("the emitting polygons' back sides would make " + std::to_string(fronts + emitting) +
+                         " elements, beyond the cap of " + std::to_string(limits.max_elements) +
+                         " for the scene; raise element_size");
+    out.side.assign(fronts, Elements::kOneSided);
+    for (std::size_t e = 0; e < fronts; ++e) {
+        if (!(max_component(out.emission[e]) > 0.0)) continue;
+        out.side[e] = Elements::kFront;
+        const std::array<int32_t, 4> c = out.corners[e];
+        const bool triangle = c[3] < 0;
+        // Quad (0 1 2 3) -> (0 3 2 1): new edge k is old edge 3 - k. Triangle (0 1 2) -> (0 2 1):
+        // new edge k is old edge 2 - k.
+        const int count = triangle ? 3 : 4;
+        out.corners.push_back(triangle ? std::array<int32_t, 4>{c[0], c[2], c[1], -1}
+                                       : std::array<int32_t, 4>{c[0], c[3], c[2], c[1]});
+        uint8_t bits = 0;
+        for (int k = 0; k < count; ++k)
+            if ((out.cut_edges[e] >> (count - 1 - k)) & 1u) bits |= uint8_t(1u << k);
+        out.cut_edges.push_back(bits);
+        out.centre.push_back(out.centre[e]);
+        out.normal.push_back(-out.normal[e]);
+        out.area.push_back(out.area[e]);
+        out.polygon.push_back(out.polygon[e]);
+        out.reflectance.push_back(out.reflectance[e]);
+        out.emission.push_back(out.emission[e]);
+        out.side.push_back(Elements::kBack);
+    }
+}
+
 }  // namespace
 
 BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits) {
@@ -343,6 +383,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         detail::mark_cut_edges(out, first_element, segments_begin, segments_end, tolerance);
         cut = cut_end;
     }
+    add_back_sides(out, limits);
     return result;
 }
 
