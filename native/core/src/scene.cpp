@@ -232,24 +232,29 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
-                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits) {
+                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits,
+                               std::size_t& back_sides) {
     const int count = static_cast<int>(p.size());
     const detail::SliverSplit sliver =
         count == 3 ? detail::split_sliver(p[0], p[1], p[2], limits.max_aspect) : detail::SliverSplit{};
     std::vector<DVec3> points = p;  // a cap sliver's altitude foot joins as point 3
     if (sliver.at_foot) points.push_back(sliver.foot);
     auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
-    // Counts first, checked against the cap in double, before any element is made.
+    // Counts first, checked against the cap in double, before any element is made. An emitting
+    // polygon's elements each get a back side (add_back_sides): they count twice.
+    const bool emits = max_component(emitted) > 0.0;
     auto check_cap = [&](double elements) {
-        if (double(out.size()) + elements > double(limits.max_elements)) {
+        if (emits) elements *= 2.0;
+        if (double(out.size() + back_sides) + elements > double(limits.max_elements)) {
             char what[200];
             std::snprintf(what, sizeof what,
-                          "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
+                          "element_size %g m would make %.3g elements from this polygon%s, beyond the cap of %zu "
                           "for the scene; raise element_size",
-                          double(max_edge), elements, limits.max_elements);
+                          double(max_edge), elements, emits ? " (both sides: it emits)" : "", limits.max_elements);
             fail(f, what);
         }
     };
+    const std::size_t first_element = out.size();
     PolygonBuilder build(out, points, static_cast<int32_t>(f), rho, emitted);
     // A strip from `apex` to the edge (b, c): cut along until no row is longer than max_aspect
     // times the far edge's pieces (as limit_aspect cuts quads); nv across, as that edge asks.
@@ -296,6 +301,7 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
         check_cap(double(triangles.size()) * n * n);
         for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
     }
+    if (emits) back_sides += out.size() - first_element;
     std::vector<int32_t> corners(p.size());
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
@@ -304,15 +310,10 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
 /// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
 /// front's vertices, so that everything that renders or traces the elements sees the two sides
 /// at exactly one place; its cut-edge bits follow its reversed corners.
-void add_back_sides(Elements& out, const ElementLimits& limits) {
+/// subdivide() counted them against the element cap.
+void add_back_sides(Elements& out, std::size_t back_sides) {
+    if (back_sides == 0) return;
     const std::size_t fronts = out.size();
-    std::size_t emitting = 0;
-    for (std::size_t e = 0; e < fronts; ++e) emitting += max_component(out.emission[e]) > 0.0 ? 1 : 0;
-    if (emitting == 0) return;
-    if (fronts + emitting > limits.max_elements)
-        throw InputError("the emitting polygons' back sides would make " + std::to_string(fronts + emitting) +
-                         " elements, beyond the cap of " + std::to_string(limits.max_elements) +
-                         " for the scene; raise element_size");
     out.side.assign(fronts, Elements::kOneSided);
     for (std::size_t e = 0; e < fronts; ++e) {
         if (!(max_component(out.emission[e]) > 0.0)) continue;
@@ -360,6 +361,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         limits.cut_intersections ? detail::find_intersections(in, usable, limits.cut_contacts) : std::vector<detail::CutSegment>{};
 
     auto cut = cuts.begin();
+    std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
     for (std::size_t f = 0; f < in.face_count; ++f) {
         if (!usable[f]) continue;
         read_polygon(in, f, p, normal);
@@ -368,7 +370,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
-            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits);
+            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -376,14 +378,14 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const double tolerance = detail::plane_tolerance(p);
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
-            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits);
+            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }
         detail::mark_cut_edges(out, first_element, segments_begin, segments_end, tolerance);
         cut = cut_end;
     }
-    add_back_sides(out, limits);
+    add_back_sides(out, back_sides);
     return result;
 }
 

@@ -30,13 +30,20 @@ def box_arrays(size=1.0, rho=0.5, emitted=1.0):
     return v, offsets, corners, reflectance, emission
 
 
+def fronts(result, key="element_radiance"):
+    """`key` of the elements that are not an emitting polygon's back side: emitting polygons are
+    two-sided, and an emitting box's back sides face out (their radiance is their emission)."""
+    return result[key][~result["element_back"]]
+
+
 class FurnaceTest(unittest.TestCase):
     def test_closed_box_gives_emission_over_one_minus_rho(self):
         rho, emitted = 0.6, 2.0
         result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
                             tolerance=1e-7)
         expected = emitted / (1.0 - rho)
-        np.testing.assert_allclose(result["element_radiance"], expected, rtol=1e-4)
+        np.testing.assert_allclose(fronts(result), expected, rtol=1e-4)
+        np.testing.assert_allclose(result["element_radiance"][result["element_back"]], emitted)  # they face out
         np.testing.assert_allclose(result["corner_radiance"], expected, rtol=1e-4)
         self.assertTrue(result["converged"])
 
@@ -45,7 +52,7 @@ class FurnaceTest(unittest.TestCase):
         for method in ("gauss_seidel", "jacobi", "progressive"):
             with self.subTest(method=method):
                 result = _core.bake(*arrays, element_size=0.5, resolution=32, method=method, tolerance=1e-8)
-                np.testing.assert_allclose(result["element_radiance"], 2.0, rtol=1e-5)
+                np.testing.assert_allclose(fronts(result), 2.0, rtol=1e-5)
 
 
 class OutputShapesTest(unittest.TestCase):
@@ -53,7 +60,9 @@ class OutputShapesTest(unittest.TestCase):
         arrays = box_arrays()
         result = _core.bake(*arrays, element_size=0.5, resolution=16)
         elements = result["elements"]
-        self.assertEqual(elements, 6 * 4)
+        self.assertEqual(elements, 2 * 6 * 4)  # the emitting walls' back sides too
+        self.assertEqual(result["element_back"].shape, (elements,))
+        self.assertEqual(int(result["element_back"].sum()), 6 * 4)
         self.assertEqual(result["corner_radiance"].shape, (24, 3))
         self.assertEqual(result["corner_radiance"].dtype, np.float32)
         self.assertEqual(result["element_radiance"].shape, (elements, 3))
@@ -61,16 +70,16 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_corners"].dtype, np.int32)
         self.assertEqual(result["element_corner_radiance"].shape, (elements, 4, 3))
         self.assertEqual(result["element_polygon"].shape, (elements,))
-        self.assertAlmostEqual(float(result["element_area"].sum()), 6.0, places=5)
+        self.assertAlmostEqual(float(fronts(result, "element_area").sum()), 6.0, places=5)
         self.assertEqual(set(result["seconds"]), {"elements", "lights", "form_factors", "solve", "interpolate"})
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()
         layout = _core.elements(*arrays, element_size=0.3)
         result = _core.bake(*arrays, element_size=0.3, resolution=16)
-        for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
+        for key in ("element_vertices", "element_corners", "element_polygon", "element_area", "element_back"):
             np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
-        self.assertEqual(layout["elements"], 6 * 16)
+        self.assertEqual(layout["elements"], 2 * 6 * 16)  # the emitting walls' back sides too
         self.assertEqual(layout["skipped"], [])
 
     def test_float64_and_list_input_is_accepted(self):
@@ -197,7 +206,7 @@ class ProgressMonitorTest(unittest.TestCase):
                                               tolerance=1e-6)
         thread.join(60)
         self.assertFalse(thread.is_alive())
-        np.testing.assert_allclose(outcome["result"]["element_radiance"], 2.0, rtol=1e-5)
+        np.testing.assert_allclose(fronts(outcome["result"]), 2.0, rtol=1e-5)
         last = monitor.snapshot()
         self.assertEqual(last["phase"], "solve")
         self.assertEqual(last["radiance"].shape, (outcome["result"]["elements"], 3))
