@@ -166,6 +166,31 @@ TEST(TwoSided, WrittenColoursAreTheFront) {
     }
 }
 
+TEST(TwoSided, LampsLightTheBackSide) {
+    // A reflecting emitter facing down under a sun shining straight down: its back side takes the
+    // sun's reflection, E + rho S / pi exactly; its front none (the twins never hide each other
+    // from the sun raster, nor from the hierarchy's rays).
+    test::SceneArrays scene;
+    scene.add_quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, Rgb(kRho), Rgb(kEmitted));  // normal -z
+    Lights lights;
+    lights.suns.push_back({Vec3(0, 0, -1), Rgb(1.0)});
+    BakeSettings u = uniform(Method::GaussSeidel);
+    u.lights = lights;
+    HierarchySettings h = hierarchical();
+    h.lights = lights;
+    const BakeResult a = bake(scene.input(), u);
+    const HierarchyResult b = bake_hierarchical(scene.input(), h);
+    for (const auto& [e, radiance] : {std::tie(a.build.elements, a.solve.radiance), std::tie(b.output, b.output_radiance)}) {
+        // The square (1 m^2) reflects rho S / pi of radiance on one side: zero with one-sided emitters.
+        double reflected = 0.0;
+        for (std::size_t i = 0; i < e.size(); ++i) reflected += e.area[i] * (radiance[i].g - kEmitted);
+        EXPECT_NEAR(reflected, kRho / M_PI, 1e-4);
+        for (std::size_t i = 0; i < e.size(); ++i)
+            // 5e-4: the sun raster's own per-element error, 2.4e-4 here, as much for a face lit on its front.
+            EXPECT_NEAR(radiance[i].g, kEmitted + (e.is_back(i) ? kRho / M_PI : 0.0), 5e-4) << i;
+    }
+}
+
 /// A closed 2 m room (rho 0.5, normals inward) with a two-sided emitting square (rho 0.5) hanging
 /// inside: nothing escapes and nothing is black, so all the power both sides emit is absorbed, up
 /// to how far the factors miss reciprocity (A_i F_ij = A_j F_ji) between the small square and the
