@@ -36,8 +36,7 @@ SceneArrays perpendicular_unit_squares(const Rgb& rho = Rgb(0.5), const Rgb& emi
 SceneArrays closed_box(const Vec3& size, const Rgb& rho, const Rgb& emitted);
 
 /// The Cornell box as a closed 1 m cube (front wall closed too, so no light escapes):
-/// red left wall, green right wall, white elsewhere, a square ceiling light (polygon 6) in an
-/// opening of the ceiling (polygon 1 and the last three) and two blocks.
+/// red left wall, green right wall, white elsewhere, a square ceiling light and two blocks.
 SceneArrays cornell_box();
 
 /// The radiance of the elements that are not an emitting polygon's back side (Elements::side), in

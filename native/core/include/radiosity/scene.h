@@ -89,8 +89,11 @@ struct ElementLimits {
     /// that no element straddles an intersection and leaks light across it (docs/stability.md).
     bool cut_intersections = true;
     /// With cut_intersections: cut them along contact lines too, where another polygon stands on
-    /// them (a box on a floor), so no element straddles the footprint's outline. Off here, on in
-    /// the uniform and hierarchical bakes (BakeSettings::limits, HierarchySettings::limits).
+    /// them (a box on a floor), so no element straddles the footprint's outline; and along the
+    /// outline of an emitting polygon hung close in front of them (parallel, within a tenth of its
+    /// longest edge, its back side towards them: a panel under a ceiling), so no element straddles
+    /// the edge of the light its back side casts. Off here, on in the uniform and hierarchical
+    /// bakes (BakeSettings::limits, HierarchySettings::limits).
     bool cut_contacts = false;
 
     /// These limits with contact cuts on.
