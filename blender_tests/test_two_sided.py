@@ -127,4 +127,25 @@ def test_power_counts_both_sides():
     np.testing.assert_allclose(panel, RADIANCE, rtol=1e-6)
 
 
-harness.run(test_back_side_lights_the_ceiling_as_in_cycles, test_power_counts_both_sides)
+def test_copies_show_the_front():
+    """Subdivided Copies: the panel's copy has its elements once, all facing down as the panel does
+    (its back sides are solved, not drawn), showing its front's colour."""
+    room_with_panel()
+    settings = bpy.context.scene.radiosity
+    settings.target = "COPIES"
+    try:
+        for method in ("GAUSS_SEIDEL", "HIERARCHICAL"):
+            addon.bake(bpy.context.scene, method=method, hemicube_resolution=64, element_size=0.25)
+            copy = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == "Panel").data
+            area = np.empty(len(copy.polygons))
+            copy.polygons.foreach_get("area", area)
+            assert abs(area.sum() - PANEL ** 2) < 1e-6, (method, area.sum())
+            normals = np.empty(3 * len(copy.polygons))
+            copy.polygons.foreach_get("normal", normals)
+            assert (normals.reshape(-1, 3)[:, 2] < -0.99).all(), (method, normals)  # facing down, as the panel
+            np.testing.assert_allclose(harness.corner_colors(copy, "Radiosity"), RADIANCE, rtol=1e-6)
+    finally:
+        settings.target = "ORIGINAL"
+
+
+harness.run(test_back_side_lights_the_ceiling_as_in_cycles, test_power_counts_both_sides, test_copies_show_the_front)

@@ -306,11 +306,12 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
 }
+
 /// Emitting polygons emit from both sides, as in Cycles: each of their elements gets a twin on
 /// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
 /// front's vertices, so that everything that renders or traces the elements sees the two sides
-/// at exactly one place; its cut-edge bits follow its reversed corners.
-/// subdivide() counted them against the element cap.
+/// at exactly one place; its cut-edge bits follow its reversed corners. `back_sides` is their
+/// count, which subdivide() checked against the element cap.
 void add_back_sides(Elements& out, std::size_t back_sides) {
     if (back_sides == 0) return;
     const std::size_t fronts = out.size();
