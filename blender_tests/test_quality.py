@@ -173,38 +173,47 @@ def test_summary_on_the_furnace():
     scenes.furnace_box(rho, emitted, cells=4)
     settings = bpy.context.scene.radiosity
     settings.element_size, settings.hemicube_resolution, settings.method = 0.125, 64, "GAUSS_SEIDEL"
-    # A loose tolerance, so that the solve's error is large enough to compare with its bound.
-    settings.tolerance = 1e-2
+    # A loose tolerance, so that the solve's error is large enough to compare with its bound. Half
+    # of 1e-2 since the walls emit from both sides: their back sides double |E| (not the fronts'
+    # error), so this leaves the fronts as far from converged as 1e-2 did with one side.
+    settings.tolerance = 5e-3
     # Plain Gauss-Seidel, whose residual keeps its sign (below); over-relaxation overshoots.
     with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", 1.0):
         job = job_for(bpy.context.scene)
         radiance = job.solve()["element_radiance"]
     summary = job.write(bpy.context.scene)
     power, estimate = summary["energy"], summary["error_estimate"]
-    # A Lambertian surface of radiance L and area A sends pi L A watts; the box's area is 6.
-    exact_emitted, exact_leaving = math.pi * 6 * emitted, math.pi * 6 * emitted / (1 - rho)
+    # A Lambertian surface of radiance L and area A sends pi L A watts; the box's area is 6. Its
+    # walls emit from both sides (as in Cycles): the back sides face out, and what they send,
+    # pi 6 emitted, leaves the box.
+    outward = math.pi * 6 * emitted
+    exact_emitted, exact_leaving = 2 * outward, math.pi * 6 * emitted / (1 - rho) + outward
     print("furnace: residual %.3g, emitted %.6f W (exact %.6f), absorbed %.6f W, leaving %.6f W (exact %.6f), "
           "solve bound %.4g" % (summary["residual"], power["emitted"], exact_emitted, power["absorbed"],
                                 power["leaving"], exact_leaving, estimate["solve_bound"]))
     assert abs(power["emitted"] / exact_emitted - 1) < 1e-6
-    # Closed and nothing black: what is not absorbed is only what the solve left. With residual
-    # r = E - (I - rho F) L and rows summing to 1, emitted - absorbed = pi sum A r / rho, and
-    # Gauss-Seidel from zero leaves r >= 0: the lost share is the relative residual over rho.
+    # Closed and nothing black inside: what is not absorbed is what the back sides send out and
+    # what the solve left. With residual r = E - (I - rho F) L and rows summing to 1 (the back
+    # sides' rows are empty and their r is 0), emitted - outward - absorbed = pi sum A r / rho, and
+    # Gauss-Seidel from zero leaves r >= 0: that share is the relative residual over rho.
     expected_lost = summary["residual"] / rho * power["emitted"]
-    assert abs(power["lost"] / expected_lost - 1) < 0.01, (power["lost"], expected_lost)
+    assert abs((power["lost"] - outward) / expected_lost - 1) < 0.01, (power["lost"], outward, expected_lost)
     assert abs(power["leaving"] / exact_leaving - 1) <= estimate["solve_bound"]
 
-    # The solve's bound holds, and in the furnace it is nearly tight (L is nearly uniform).
-    error = np.abs(radiance / (emitted / (1 - rho)) - 1).mean()
+    # The solve's bound holds, and in the furnace it is nearly tight (L is nearly uniform), on the
+    # baked light: the walls' fronts (the back sides are not written).
+    error = np.abs(radiance[~job.result["element_back"]] / (emitted / (1 - rho)) - 1).mean()
     print("furnace: mean relative error %.4g, bound %.4g" % (error, estimate["solve_bound"]))
     assert 0.5 * estimate["solve_bound"] <= error <= estimate["solve_bound"], error
 
     # The panel's line says the same, in numbers computed here from the residual alone.
     report = settings.last_accuracy
     assert report.startswith("Residual %.1e" % summary["residual"]), report
-    assert "%.1f%% absorbed" % (100 * (1 - summary["residual"] / rho)) in report, report
-    # |E| / |L| = 1 - rho in the furnace, so the solve's bound is the residual itself.
-    assert abs(estimate["solve_bound"] / summary["residual"] - 1) < 0.01, estimate
+    # Half the power is the back sides', which leaves the box.
+    assert "%.1f%% absorbed" % (100 * (0.5 - summary["residual"] / rho)) in report, report
+    # |E| / |L| = 2 (1 - rho) in the furnace (|E| counts both sides of the walls, |L| the baked
+    # fronts), so the solve's bound is twice the residual.
+    assert abs(estimate["solve_bound"] / (2 * summary["residual"]) - 1) < 0.01, estimate
     assert "at most %.2g%% (solve)" % (100 * estimate["solve_bound"]) in report, report
 
 
@@ -215,6 +224,9 @@ def test_over_relaxation_near_rho_one():
     scenes.clear_scene()
     box = scenes.furnace_box(rho, emitted, cells=4)
     bpy.context.scene.radiosity.quality = "DRAFT"
+    # The default budget (an earlier test may leave a small one), which stores F for the walls and
+    # their back sides (the walls emit: two-sided).
+    bpy.context.scene.radiosity.memory_budget = 2048
     with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", 1.0):
         plain = addon.bake(bpy.context.scene)
     plain_colors = harness.corner_colors(box.data, "Radiosity")

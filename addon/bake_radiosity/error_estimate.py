@@ -31,7 +31,7 @@ class ErrorEstimate:
 
 def estimate(result):
     """ErrorEstimate of a `_core.bake` result."""
-    elements = result["elements"]
+    elements = int((~result["element_back"]).sum())  # as measured: emitters' back sides are not shown
     return ErrorEstimate(solve_bound=solve_bound(result), discretisation_relation=_relation(elements),
                          discretisation=_interpolate(elements, 1), discretisation_vs_cycles=_interpolate(elements, 2))
 
@@ -41,12 +41,15 @@ def solve_bound(result):
 
     The residual r = E - (I - rho F) L is relative to |E|; with reciprocity (A_i F_ij = A_j F_ji)
     the area-weighted L1 norm of rho F is at most rho_max, so the error (I - rho F)^-1 r is at most
-    |r| / (1 - rho_max). Hemi-cube rows are reciprocal only to about 1% (docs/design.md)."""
+    |r| / (1 - rho_max). Hemi-cube rows are reciprocal only to about 1% (docs/design.md).
+    |L| is the baked light: without the emitters' back sides (element_back), which are not written
+    (their residual counts in r, their emission in |E|)."""
     if result["elements"] == 0:
         return 0.0
     area = result["element_area"].astype(np.float64)[:, None]
     emitted = float((area * np.abs(result["element_emission"])).sum())
-    leaving = float((area * np.abs(result["element_radiance"])).sum())
+    shown = ~result["element_back"]
+    leaving = float((area[shown] * np.abs(result["element_radiance"][shown])).sum())
     if leaving == 0.0:
         return 0.0
     rho_max = float(result["element_reflectance"].max())

@@ -8,8 +8,8 @@ from gpu_extras.batch import batch_for_shader
 
 
 class ProgressOverlay:
-    def __init__(self, element_vertices, element_corners):
-        tris, element_of_tri = _triangles(element_corners)
+    def __init__(self, element_vertices, element_corners, element_back=None):
+        tris, element_of_tri = _triangles(element_corners, element_back)
         positions = element_vertices[tris].astype(np.float64)
         normals = np.cross(positions[:, 1] - positions[:, 0], positions[:, 2] - positions[:, 0])
         normals /= np.maximum(np.linalg.norm(normals, axis=1), 1e-12)[:, None]
@@ -43,12 +43,16 @@ class ProgressOverlay:
         gpu.state.depth_test_set("NONE")
 
 
-def _triangles(element_corners):
-    """Fan triangles (T,3) of the element polygons (col 3 = -1 for triangles) and their element."""
-    quads = element_corners[:, 3] >= 0
-    first = element_corners[:, [0, 1, 2]]
-    second = element_corners[quads][:, [0, 2, 3]]
+def _triangles(element_corners, element_back=None):
+    """Fan triangles (T,3) of the element polygons (col 3 = -1 for triangles) and their element,
+    without the emitters' back sides (`element_back`): the viewport shows each face's front."""
     elements = np.arange(len(element_corners))
+    if element_back is not None:
+        elements = elements[~element_back]
+    corners = element_corners[elements]
+    quads = corners[:, 3] >= 0
+    first = corners[:, [0, 1, 2]]
+    second = corners[quads][:, [0, 2, 3]]
     return np.concatenate([first, second]), np.concatenate([elements, elements[quads]])
 
 

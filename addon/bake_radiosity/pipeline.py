@@ -112,13 +112,13 @@ class BakeJob:
         return self.result
 
     def element_layout(self):
-        """(element_vertices, element_corners) in the order progress reports radiance."""
+        """(element_vertices, element_corners, element_back) in the order progress reports radiance."""
         e = self.exported
         with core_errors_as_bake_errors():
             layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
                                             e.emission, e.material, element_size=self.choice.element_size,
                                             max_element_aspect=self.choice.max_element_aspect)
-        return layout["element_vertices"], layout["element_corners"]
+        return layout["element_vertices"], layout["element_corners"], layout["element_back"]
 
     def _run_core(self, method, max_iterations, progress):
         e, c = self.exported, self.choice

@@ -102,9 +102,11 @@ def _copies_collection(scene):
 def _write_copies(scene, exported, result, name):
     remove_copies()
     collection = _copies_collection(scene)
-    element_polygon = result["element_polygon"]
-    by_polygon = np.argsort(element_polygon, kind="stable")
-    sorted_polygon = element_polygon[by_polygon]
+    # An emitter's back side (element_back) is solved but not drawn: the copy shows each face's front.
+    front = np.flatnonzero(~result["element_back"])
+    element_polygon = result["element_polygon"][front]
+    by_polygon = front[np.argsort(element_polygon, kind="stable")]
+    sorted_polygon = result["element_polygon"][by_polygon]
     for part in exported.parts:
         first, last = np.searchsorted(sorted_polygon, [part.polygon_start, part.polygon_stop])
         elements = by_polygon[first:last]

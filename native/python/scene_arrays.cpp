@@ -56,6 +56,11 @@ void add_elements(const BuildResult& build, py::dict& out) {
     out["element_corners"] = corner_index_array(elements.corners);
     out["element_polygon"] = to_numpy(elements.polygon);
     out["element_area"] = to_numpy(elements.area);
+    // Which elements are an emitting polygon's back side (Elements::side): solved, counted in the
+    // power, not drawn or written (their corner colours are zero).
+    py::array_t<bool> back(static_cast<py::ssize_t>(elements.size()));
+    for (std::size_t e = 0; e < elements.size(); ++e) back.mutable_data()[e] = elements.is_back(e);
+    out["element_back"] = back;
     out["elements"] = elements.size();
     out["skipped"] = skipped;
 }

@@ -38,9 +38,11 @@ TEST(Scene, OneElementPerPolygonWhenMaxEdgeIsZero) {
     const SceneArrays s = test::cornell_box();
     const BuildResult r = build_elements(s.input(), 0.0f);
     EXPECT_TRUE(r.skipped.empty());
-    ASSERT_EQ(r.elements.size(), s.material.size());
+    // One element per polygon, then the back side of the emitting one (the light).
+    ASSERT_EQ(test::front_count(r.elements), s.material.size());
+    ASSERT_EQ(r.elements.size(), s.material.size() + 1);
     for (std::size_t e = 0; e < r.elements.size(); ++e) {
-        EXPECT_EQ(r.elements.polygon[e], static_cast<int32_t>(e));
+        EXPECT_EQ(r.elements.polygon[e], e < s.material.size() ? static_cast<int32_t>(e) : r.elements.polygon.back());
         EXPECT_NEAR(glm::length(r.elements.normal[e]), 1.0f, 1e-6f);
     }
     EXPECT_NEAR(r.elements.area[0], 1.0f, 1e-6f);

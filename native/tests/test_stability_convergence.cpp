@@ -20,7 +20,8 @@ struct Furnace {
           F(compute_form_factors(elements, 32)), expected(1.0 / (1.0 - rho)) {}
     double worst_error(const std::vector<Rgb>& L) const {
         double worst = 0.0;
-        for (const Rgb& l : L) worst = std::max(worst, std::abs(l.g / expected - 1.0));
+        // The walls' fronts: their back sides (emitting polygons are two-sided) face out, L = E.
+        for (const Rgb& l : test::fronts(elements, L)) worst = std::max(worst, std::abs(l.g / expected - 1.0));
         return worst;
     }
     Elements elements;
@@ -128,6 +129,7 @@ TEST(Convergence, PinholesAtBoxCornersAreFilledSoRowsSumToOne) {
         g.F = compute_form_factors(g.elements, rows);
         double lowest = 1.0;
         for (std::size_t i = 0; i < g.F.rows(); ++i) {
+            if (g.elements.is_back(i)) continue;  // an emitting wall's back side faces out: its row is empty
             double sum = 0.0;
             for (int64_t k = g.F.row_start[i]; k < g.F.row_start[i + 1]; ++k) sum += g.F.val[k];
             lowest = std::min(lowest, sum);

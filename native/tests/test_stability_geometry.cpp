@@ -36,7 +36,7 @@ TEST(Slivers, AspectSplitFollowsTheLightAlongASliver) {
         const BakeResult r = bake(scene.input(), s);
         const double worst = test::worst_direct_light_error(r, 0.5);
         std::printf("sliver, max aspect %.0f: %zu elements, worst element error %.3f of the peak radiance\n", aspect,
-                    r.build.elements.size() - 1, worst);
+                    test::front_count(r.build.elements) - 1, worst);
         if (aspect == 0.0f) EXPECT_GT(worst, 0.5);  // measured
         else EXPECT_LT(worst, 0.05);                // measured
     }

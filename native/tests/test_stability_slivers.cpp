@@ -71,10 +71,12 @@ SliverMeasure measure(const test::SceneArrays& scene, float max_aspect, double h
     const BakeResult r = bake(scene.input(), s);
     const Elements& e = r.build.elements;
     SliverMeasure m;
-    m.elements = e.size() - 1;
+    // The floor's elements: after the lamp (element 0), before the lamp's back side (the last).
+    const std::size_t floor_end = test::front_count(e);
+    m.elements = floor_end - 1;
     double peak = 0.0;
-    for (std::size_t i = 1; i < e.size(); ++i) peak = std::max(peak, kRho * kLamp * area_flux(e, int32_t(i), 0, 8) / e.area[i]);
-    for (std::size_t i = 1; i < e.size(); ++i) {
+    for (std::size_t i = 1; i < floor_end; ++i) peak = std::max(peak, kRho * kLamp * area_flux(e, int32_t(i), 0, 8) / e.area[i]);
+    for (std::size_t i = 1; i < floor_end; ++i) {
         const int n = e.is_triangle(i) ? 3 : 4;
         double diameter = 0.0;
         for (int a = 0; a < n; ++a)

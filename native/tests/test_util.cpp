@@ -27,6 +27,19 @@ int32_t SceneArrays::add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, const Rgb& rho, co
     return add_polygon({a, b, c, d}, rho, emitted, material_id);
 }
 
+std::vector<Rgb> fronts(const Elements& e, const std::vector<Rgb>& radiance) {
+    std::vector<Rgb> out;
+    for (std::size_t i = 0; i < e.size(); ++i)
+        if (!e.is_back(i)) out.push_back(radiance[i]);
+    return out;
+}
+
+std::size_t front_count(const Elements& e) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) count += e.is_back(i) ? 0 : 1;
+    return count;
+}
+
 SceneInput SceneArrays::input() const {
     SceneInput in;
     in.positions = positions.data();
@@ -106,7 +119,8 @@ SceneArrays cornell_box() {
 double worst_direct_light_error(const BakeResult& r, double rho) {
     const Elements& e = r.build.elements;
     double worst = 0.0, peak = 0.0;
-    for (std::size_t i = 1; i < e.size(); ++i) {
+    // Receivers: after the emitter, before its back side (emitting polygons are two-sided).
+    for (std::size_t i = 1; i < front_count(e); ++i) {
         const double truth = rho * area_flux(e, int32_t(i), 0, 8) / e.area[i];
         peak = std::max(peak, truth);
         worst = std::max(worst, std::abs(r.solve.radiance[i].g - truth));

@@ -39,9 +39,17 @@ SceneArrays closed_box(const Vec3& size, const Rgb& rho, const Rgb& emitted);
 /// red left wall, green right wall, white elsewhere, a square ceiling light and two blocks.
 SceneArrays cornell_box();
 
+/// The radiance of the elements that are not an emitting polygon's back side (Elements::side), in
+/// order: what the fronts of a closed box's emitting walls show inside. Their back sides face out
+/// and see nothing (their L is their E).
+std::vector<Rgb> fronts(const Elements& e, const std::vector<Rgb>& radiance);
+
+/// How many elements are not an emitting polygon's back side.
+std::size_t front_count(const Elements& e);
+
 /// The worst element's error against its exact direct light from emitter polygon 0 (radiance 1,
-/// green channel): elements 1.. take rho * area_flux(e, i, 0) / A_i. As a share of the largest
-/// exact value.
+/// green channel, one element facing the receivers): elements 1.. up to the emitter's back side
+/// take rho * area_flux(e, i, 0) / A_i. As a share of the largest exact value.
 double worst_direct_light_error(const BakeResult& r, double rho);
 
 }  // namespace radiosity::test

@@ -144,7 +144,10 @@ TEST(ZoneMerging, IsothermalEnclosureStaysExact) {
     settings.surface_resolution = 32;
     settings.zone_resolution = 16;
     ZonalMatrix R = compute_exchange_factors(elements, media, zones, settings);
+    // Rows and unknowns of the walls' back sides (the walls emit: two-sided) face out of the box.
+    auto back = [&](std::size_t x) { return x < elements.size() && elements.is_back(x); };
     for (std::size_t x = 0; x < R.rows(); ++x) {
+        if (back(x)) continue;
         Rgb sum(0.0);
         for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k) sum += R.value(k);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(sum[c], 1.0, 2e-5) << "row " << x;
@@ -157,7 +160,8 @@ TEST(ZoneMerging, IsothermalEnclosureStaysExact) {
         const SolveResult r = solve_zonal(elements, zones, R, solve);
         ASSERT_TRUE(r.converged);
         for (std::size_t x = 0; x < r.radiance.size(); ++x)
-            for (int c = 0; c < 3; ++c) ASSERT_NEAR(r.radiance[x][c] / L0[c], 1.0, 1e-5) << "unknown " << x;
+            for (int c = 0; c < 3; ++c)
+                if (!back(x)) ASSERT_NEAR(r.radiance[x][c] / L0[c], 1.0, 1e-5) << "unknown " << x;
     }
 }
 

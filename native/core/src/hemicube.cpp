@@ -152,6 +152,9 @@ void Hemicube::Impl::draw(const Elements& elements, int32_t e, uint8_t face_set,
     // Distance of the element's plane from the eye, negative when the eye sees its front.
     const float plane = glm::dot(normal, centre);
     if (!(plane * plane > 1e-12f * glm::dot(centre, centre))) return;  // edge-on: covers no area
+    // An emitter's two sides lie on the same vertices and cover the same cells at the same depth:
+    // seen from behind, an element that has a twin is left to it, which faces the eye.
+    if (plane >= 0.0f && elements.has_twin(e)) return;
     const float side = plane < 0.0f ? -1.0f : 1.0f;
     std::array<Vec3, K> corner, edge;
     for (int k = 0; k < K; ++k) corner[k] = local[elements.corners[e][k]];

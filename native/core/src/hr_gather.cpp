@@ -94,7 +94,7 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
     ranges.erase(std::remove_if(ranges.begin(), ranges.end(),
                                 [&](const LeafRange& r) {
                                     return !(max_channel(mesh.reflectance[r.begin]) > 0.0) ||
-                                           !resolved(tree, leaf[r.begin]);
+                                           mesh.is_back(r.begin) || !resolved(tree, leaf[r.begin]);
                                 }),
                  ranges.end());
     detail::parallel_rows("output", ranges.size(), 16, 0, progress, [&](std::size_t i) {

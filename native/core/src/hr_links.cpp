@@ -152,7 +152,13 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     const int nc = element_corners(tree_, s, C);
     glm::dvec3 polygon[4];
     for (int k = 0; k < nc; ++k) polygon[k] = C[k];
+    // A point in s's plane (within the gap rays leave at their ends) sees none of s. Lambert's
+    // formula, from a point inside a coplanar polygon that rounding puts a hair in front of it,
+    // gives the whole hemisphere: an emitter's two sides (Elements::side), back to back, would
+    // light each other fully.
+    const float in_plane = 1e-6f * tree_.scene_size;
     auto factor_at = [&](const Vec3& x) {
+        if (!(glm::dot(s.normal, x - s.centre) > in_plane)) return 0.0;
         return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
     };
     Samples F;  // over r's Gauss points

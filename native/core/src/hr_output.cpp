@@ -152,6 +152,8 @@ private:
         out.polygon.push_back(polygon_);
         out.reflectance.push_back(n.reflectance);
         out.emission.push_back(emission_);
+        // An emitter's back side (its own patches, Elements::side) stays one: solved, not written.
+        if (!build_.elements.side.empty()) out.side.push_back(build_.elements.side[n.patch]);
         mesh_.radiance.push_back(n.radiance);
         mesh_.lamp_part.push_back(lamp_part_);
         mesh_.leaf.push_back(leaf_);

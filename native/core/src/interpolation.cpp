@@ -20,6 +20,8 @@
 /// Values are clamped at zero per channel. Elements of one smooth surface get equal sets, so their
 /// shared corners get one value and the colours join without seams.
 ///  3. a vertex inside a compatible neighbour's edge (T-vertex) takes that edge's linear colour.
+/// An emitter's back side (Elements::side) takes no part: its corners stay zero, and the mesh
+/// shows its front.
 #include "radiosity/interpolation.h"
 
 #include "weld.h"
@@ -49,13 +51,13 @@ public:
         std::vector<int32_t>& start = incident_start_;
         start.assign(welds + 1, 0);
         for (std::size_t e = 0; e < size(); ++e)
-            for (int k = 0; k < corner_count(e); ++k) ++start[weld(e, k) + 1];
+            for (int k = 0; k < written_corners(e); ++k) ++start[weld(e, k) + 1];
         for (std::size_t w = 0; w < welds; ++w) start[w + 1] += start[w];
         std::vector<int32_t>& incident = incident_;
         incident.resize(start[welds]);
         std::vector<int32_t> fill(start.begin(), start.end() - 1);
         for (std::size_t e = 0; e < size(); ++e)
-            for (int k = 0; k < corner_count(e); ++k) incident[fill[weld(e, k)]++] = slot(e, k);
+            for (int k = 0; k < written_corners(e); ++k) incident[fill[weld(e, k)]++] = slot(e, k);
         mark_cut_welds(welds);
         // Compatible set and border flag of every slot.
         set_start_.assign(4 * size() + 1, 0);
@@ -63,7 +65,7 @@ public:
         for (std::size_t e = 0; e < size(); ++e) {
             for (int k = 0; k < 4; ++k) {
                 const int32_t s = slot(e, k);
-                if (k < corner_count(e)) {
+                if (k < written_corners(e)) {
                     const int32_t w = weld(e, k);
                     const std::size_t set_begin = set_.size();
                     for (int32_t t = start[w]; t < start[w + 1]; ++t)
@@ -71,13 +73,16 @@ public:
                     if (cut_weld_[w]) keep_reachable(s, set_begin);
                 }
                 set_start_[s + 1] = static_cast<int32_t>(set_.size());
-                if (k < corner_count(e)) border_[s] = has_single_edge(s);
+                if (k < written_corners(e)) border_[s] = has_single_edge(s);
             }
         }
     }
 
     std::size_t size() const { return elements_.size(); }
     int corner_count(std::size_t e) const { return elements_.is_triangle(e) ? 3 : 4; }
+    /// Corners whose colour is written: none for an emitter's back side (Elements::side), which
+    /// is in no slot's set and keeps zero colours; the mesh shows the front.
+    int written_corners(std::size_t e) const { return elements_.is_back(e) ? 0 : corner_count(e); }
     static int32_t slot(std::size_t e, int k) { return static_cast<int32_t>(4 * e) + k; }
     static std::size_t element_of(int32_t s) { return static_cast<std::size_t>(s / 4); }
     static int corner_of(int32_t s) { return s % 4; }
@@ -130,7 +135,7 @@ private:
         cut_weld_.assign(welds, false);
         if (elements_.cut_edges.empty()) return;
         for (std::size_t e = 0; e < size(); ++e)
-            for (int k = 0; k < corner_count(e); ++k)
+            for (int k = 0; k < written_corners(e); ++k)
                 if ((elements_.cut_edges[e] >> k) & 1u) cut_weld_[weld(e, k)] = cut_weld_[weld(e, (k + 1) % corner_count(e))] = true;
     }
 
@@ -287,7 +292,7 @@ void join_hanging_vertices(const Elements& elements, const Slots& slots, std::ve
     auto key = [](int32_t a, int32_t b) { return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b)); };
     std::unordered_map<uint64_t, int> uses;
     for (std::size_t e = 0; e < slots.size(); ++e)
-        for (int k = 0; k < slots.corner_count(e); ++k) ++uses[key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))];
+        for (int k = 0; k < slots.written_corners(e); ++k) ++uses[key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))];
     auto open = [&](std::size_t e, int k) {
         return !slots.cut_edge(e, k) && uses.at(key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))) == 1;
     };
@@ -295,7 +300,7 @@ void join_hanging_vertices(const Elements& elements, const Slots& slots, std::ve
     std::vector<std::pair<int32_t, double>> chain;  // hanging welds and their place along the edge
     for (std::size_t e = 0; e < slots.size(); ++e) {
         const int m = slots.corner_count(e);
-        for (int k = 0; k < m; ++k) {
+        for (int k = 0; k < slots.written_corners(e); ++k) {
             if (!open(e, k)) continue;
             const int32_t end = slots.weld(e, (k + 1) % m);
             const glm::dvec3 from(elements.vertices[elements.corners[e][k]]);
@@ -347,18 +352,18 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
     const std::size_t n = elements.size();
     std::vector<Rgb> value(4 * n, Rgb(0.0));
     for (std::size_t e = 0; e < n; ++e)  // step 1
-        for (int k = 0; k < slots.corner_count(e); ++k) {
+        for (int k = 0; k < slots.written_corners(e); ++k) {
             const int32_t s = Slots::slot(e, k);
             if (!slots.border(s)) value[s] = mean_radiance(slots, s, radiance);
         }
     for (std::size_t e = 0; e < n; ++e)  // step 2
-        for (int k = 0; k < slots.corner_count(e); ++k) {
+        for (int k = 0; k < slots.written_corners(e); ++k) {
             const int32_t s = Slots::slot(e, k);
             if (slots.border(s)) value[s] = extrapolate(elements, slots, s, radiance, value);
         }
     if (corner_light)
         for (std::size_t e = 0; e < n; ++e)
-            for (int k = 0; k < slots.corner_count(e); ++k) {
+            for (int k = 0; k < slots.written_corners(e); ++k) {
                 const int32_t s = Slots::slot(e, k);
                 value[s] += set_mean(slots, s, [&](int32_t t) { return (*corner_light)[t]; });
             }
@@ -372,7 +377,7 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
     // one polygon share its compatible set there, hence its value).
     std::vector<int32_t> vertex_slot(elements.vertices.size(), -1);
     for (std::size_t e = 0; e < n; ++e)
-        for (int k = 0; k < slots.corner_count(e); ++k) vertex_slot[elements.corners[e][k]] = Slots::slot(e, k);
+        for (int k = 0; k < slots.written_corners(e); ++k) vertex_slot[elements.corners[e][k]] = Slots::slot(e, k);
     colors.input_corner.assign(elements.corner_vertex.size(), Rgb(0.0));
     for (std::size_t c = 0; c < elements.corner_vertex.size(); ++c) {
         const int32_t v = elements.corner_vertex[c];

@@ -67,6 +67,16 @@ bool touches(const std::vector<DVec3>& p, const Plane& plane, double tolerance) 
     return on >= 2 && above != below;
 }
 
+double longest_edge(const std::vector<DVec3>& p) {
+    double longest = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k) longest = std::max(longest, glm::length(p[(k + 1) % p.size()] - p[k]));
+    return longest;
+}
+
+bool emits(const SceneInput& in, std::size_t f) {
+    return in.emission[3 * f] > 0.0f || in.emission[3 * f + 1] > 0.0f || in.emission[3 * f + 2] > 0.0f;
+}
+
 /// Whether x lies within `tolerance` of the polygon's outline.
 bool on_outline(const std::vector<DVec3>& p, const DVec3& x, double tolerance) {
     for (std::size_t k = 0; k < p.size(); ++k) {
@@ -138,6 +148,37 @@ public:
         if (cut_b) cut(b, a, b_corners_, b_parts_, a_parts_, glm::normalize(common), tolerance, !a_straddles, out);
     }
 
+    /// With contacts: appends the segments where polygon f is cut along the outline of emitting
+    /// polygon e hung close in front of it, its back side towards f (a light panel under a
+    /// ceiling): parallel to within 2.5 degrees, at most kBehind times e's longest edge away. e's
+    /// back side lights f up to its outline; an element of f straddling the outline would show
+    /// that light to the room on its other side.
+    void cut_behind(std::size_t e, std::size_t f, std::vector<CutSegment>& out) {
+        const Plane &pe = plane_[e], &pf = plane_[f];
+        if (contact_tolerance_ < 0.0 || !(glm::dot(pe.normal, pf.normal) > kParallel)) return;
+        read_corners(in_, e, a_corners_);
+        read_corners(in_, f, b_corners_);
+        const double longest = longest_edge(a_corners_);
+        DVec3 centre(0.0);
+        for (const DVec3& q : b_corners_) centre += q / double(b_corners_.size());
+        const double tolerance = std::max({pe.tolerance, pf.tolerance, contact_tolerance_});
+        const double behind = pe.offset - glm::dot(pe.normal, centre);
+        if (!(behind > tolerance && behind <= kBehind * longest)) return;
+        convex_parts(b_corners_, pf, b_parts_);
+        for (std::size_t k = 0; k < a_corners_.size(); ++k) {
+            auto onto_f = [&](const DVec3& q) { return q - (glm::dot(pf.normal, q) - pf.offset) * pf.normal; };
+            const DVec3 from = onto_f(a_corners_[k]), to = onto_f(a_corners_[(k + 1) % a_corners_.size()]);
+            for (const auto& f_part : b_parts_) {
+                DVec3 ca = from, cb = to;
+                if (clip_segment(f_part, pf.normal, tolerance, ca, cb) && !on_outline(b_corners_, 0.5 * (ca + cb), tolerance))
+                    out.push_back({static_cast<int32_t>(f), static_cast<int32_t>(e), ca, cb});
+            }
+        }
+    }
+
+    static constexpr double kParallel = 0.999;  ///< cos 2.56 degrees
+    static constexpr double kBehind = 0.1;
+
 private:
     /// Appends the segments where polygon `by` (its convex parts) passes through or stands on polygon
     /// f. A contact along f's own outline (a concave f sharing an edge with `by`) is no cut: it would
@@ -190,7 +231,17 @@ std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vect
     std::vector<Box> boxes;
     for (std::size_t f = 0; f < in.face_count; ++f)
         if (usable[f]) polygon.push_back(static_cast<int32_t>(f)), boxes.push_back(bounding_box(in, f));
-    const BoxTree tree(boxes);
+    // With contacts, an emitting polygon's box grows by as far behind it as it cuts (cut_behind).
+    std::vector<Box> reach = boxes;
+    if (contacts)
+        for (std::size_t i = 0; i < reach.size(); ++i)
+            if (emits(in, std::size_t(polygon[i]))) {
+                const glm::vec3 size = reach[i].hi - reach[i].lo;
+                const float grow = 2.0f * float(Finder::kBehind) * std::max({size.x, size.y, size.z});
+                reach[i].lo -= glm::vec3(grow);
+                reach[i].hi += glm::vec3(grow);
+            }
+    const BoxTree tree(reach);
     Box scene{glm::vec3(std::numeric_limits<float>::infinity()), glm::vec3(-std::numeric_limits<float>::infinity())};
     for (const Box& box : boxes) scene.lo = glm::min(scene.lo, box.lo), scene.hi = glm::max(scene.hi, box.hi);
     // As weld_tolerance: 1e-5 of the scene's diagonal.
@@ -212,7 +263,11 @@ std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vect
     tbb::enumerable_thread_specific<Finder> finders(in, planes, contact_tolerance);
     tbb::enumerable_thread_specific<std::vector<CutSegment>> found;
     tree.visit_overlapping_pairs([&](int32_t i, int32_t j) {
-        finders.local().cut_pair(std::size_t(polygon[i]), std::size_t(polygon[j]), boxes[i], boxes[j], found.local());
+        const std::size_t a = std::size_t(polygon[i]), b = std::size_t(polygon[j]);
+        Finder& finder = finders.local();
+        finder.cut_pair(a, b, boxes[i], boxes[j], found.local());
+        if (contacts && emits(in, a)) finder.cut_behind(a, b, found.local());
+        if (contacts && emits(in, b)) finder.cut_behind(b, a, found.local());
     });
     std::vector<CutSegment> segments;
     for (const auto& part : found) segments.insert(segments.end(), part.begin(), part.end());

@@ -26,8 +26,10 @@ double plane_tolerance(const std::vector<glm::dvec3>& corners);
 /// polygon's plane and the other way round, and the two overlap along their planes' common line;
 /// and with `contacts`, every contact line: where a polygon with corners on both sides of another's plane has that
 /// other standing on it, an edge in its plane within 1e-5 of the scene's diagonal (a box's side
-/// faces on a floor cut the floor along the box's outline). Polygons meeting at their edges (walls
-/// at a corner) and coplanar faces give none.
+/// faces on a floor cut the floor along the box's outline); and with `contacts`, the outline of
+/// each emitting polygon hung close in front of a parallel polygon, its back side towards it,
+/// projected onto it (a light panel under a ceiling: its back side lights the ceiling up to that
+/// outline). Polygons meeting at their edges (walls at a corner) and coplanar faces give none.
 /// Candidates come from a BoxTree over the polygons' bounding boxes. Sorted by polygon; the
 /// segments of one polygon come in a fixed order. `usable[f]` marks polygons with valid corners.
 std::vector<CutSegment> find_intersections(const SceneInput& input, const std::vector<char>& usable, bool contacts);

@@ -26,6 +26,8 @@ namespace {
 
 using detail::DVec3;
 
+double max_component(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
     throw InputError("polygon " + std::to_string(polygon) + ": " + what);
 }
@@ -230,24 +232,29 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
-                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits) {
+                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits,
+                               std::size_t& back_sides) {
     const int count = static_cast<int>(p.size());
     const detail::SliverSplit sliver =
         count == 3 ? detail::split_sliver(p[0], p[1], p[2], limits.max_aspect) : detail::SliverSplit{};
     std::vector<DVec3> points = p;  // a cap sliver's altitude foot joins as point 3
     if (sliver.at_foot) points.push_back(sliver.foot);
     auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
-    // Counts first, checked against the cap in double, before any element is made.
+    // Counts first, checked against the cap in double, before any element is made. An emitting
+    // polygon's elements each get a back side (add_back_sides): they count twice.
+    const bool emits = max_component(emitted) > 0.0;
     auto check_cap = [&](double elements) {
-        if (double(out.size()) + elements > double(limits.max_elements)) {
+        if (emits) elements *= 2.0;
+        if (double(out.size() + back_sides) + elements > double(limits.max_elements)) {
             char what[200];
             std::snprintf(what, sizeof what,
-                          "element_size %g m would make %.3g elements from this polygon, beyond the cap of %zu "
+                          "element_size %g m would make %.3g elements from this polygon%s, beyond the cap of %zu "
                           "for the scene; raise element_size",
-                          double(max_edge), elements, limits.max_elements);
+                          double(max_edge), elements, emits ? " (both sides: it emits)" : "", limits.max_elements);
             throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
     };
+    const std::size_t first_element = out.size();
     PolygonBuilder build(out, points, static_cast<int32_t>(f), rho, emitted);
     // A strip from `apex` to the edge (b, c): cut along until no row is longer than max_aspect
     // times the far edge's pieces (as limit_aspect cuts quads); nv across, as that edge asks.
@@ -294,10 +301,45 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
         check_cap(double(triangles.size()) * n * n);
         for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
     }
+    if (emits) back_sides += out.size() - first_element;
     std::vector<int32_t> corners(p.size());
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
 }
+
+/// Emitting polygons emit from both sides, as in Cycles: each of their elements gets a twin on
+/// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
+/// front's vertices, so that everything that renders or traces the elements sees the two sides
+/// at exactly one place; its cut-edge bits follow its reversed corners. `back_sides` is their
+/// count, which subdivide() checked against the element cap.
+void add_back_sides(Elements& out, std::size_t back_sides) {
+    if (back_sides == 0) return;
+    const std::size_t fronts = out.size();
+    out.side.assign(fronts, Elements::kOneSided);
+    for (std::size_t e = 0; e < fronts; ++e) {
+        if (!(max_component(out.emission[e]) > 0.0)) continue;
+        out.side[e] = Elements::kFront;
+        const std::array<int32_t, 4> c = out.corners[e];
+        const bool triangle = c[3] < 0;
+        // Quad (0 1 2 3) -> (0 3 2 1): new edge k is old edge 3 - k. Triangle (0 1 2) -> (0 2 1):
+        // new edge k is old edge 2 - k.
+        const int count = triangle ? 3 : 4;
+        out.corners.push_back(triangle ? std::array<int32_t, 4>{c[0], c[2], c[1], -1}
+                                       : std::array<int32_t, 4>{c[0], c[3], c[2], c[1]});
+        uint8_t bits = 0;
+        for (int k = 0; k < count; ++k)
+            if ((out.cut_edges[e] >> (count - 1 - k)) & 1u) bits |= uint8_t(1u << k);
+        out.cut_edges.push_back(bits);
+        out.centre.push_back(out.centre[e]);
+        out.normal.push_back(-out.normal[e]);
+        out.area.push_back(out.area[e]);
+        out.polygon.push_back(out.polygon[e]);
+        out.reflectance.push_back(out.reflectance[e]);
+        out.emission.push_back(out.emission[e]);
+        out.side.push_back(Elements::kBack);
+    }
+}
+
 }  // namespace
 
 BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits) {
@@ -320,6 +362,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         limits.cut_intersections ? detail::find_intersections(in, usable, limits.cut_contacts) : std::vector<detail::CutSegment>{};
 
     auto cut = cuts.begin();
+    std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
     for (std::size_t f = 0; f < in.face_count; ++f) {
         if (!usable[f]) continue;
         read_polygon(in, f, p, normal);
@@ -328,7 +371,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
-            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits);
+            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -336,13 +379,14 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const double tolerance = detail::plane_tolerance(p);
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
-            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits);
+            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }
         detail::mark_cut_edges(out, first_element, segments_begin, segments_end, tolerance);
         cut = cut_end;
     }
+    add_back_sides(out, back_sides);
     return result;
 }
 

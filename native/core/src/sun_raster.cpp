@@ -103,6 +103,8 @@ void add_sun_light(const Elements& elements, const SunLight& sun, int resolution
     Grid grid(x_min, y_min, cell, columns, rows);
     grid.covered.assign(elements.size(), 0);
     for (std::size_t e = 0; e < elements.size(); ++e) {
+        // An emitter's two sides cover the same cells at the same depth: the one facing the sun draws.
+        if (elements.has_twin(e) && !(-glm::dot(elements.normal[e], frame[2]) > 0.0f)) continue;
         const auto& c = elements.corners[e];
         grid.triangle(p[c[0]], p[c[1]], p[c[2]], int32_t(e));
         if (c[3] >= 0) grid.triangle(p[c[0]], p[c[2]], p[c[3]], int32_t(e));

@@ -31,7 +31,8 @@ def box_arrays(size=1.0, rho=0.5, emitted=1.0):
 
 
 def block_on_floor_arrays():
-    """A 2 m floor (emitting) with a 0.5 m block standing on it, off the floor's element grid."""
+    """A 2 m floor with a 0.5 m block standing on it, off the floor's element grid; the block's top
+    emits."""
     a, b, h = -0.3, 0.2, 0.5
     v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0],
                   [a, a, 0], [b, a, 0], [b, b, 0], [a, b, 0],
@@ -43,8 +44,14 @@ def block_on_floor_arrays():
     offsets = np.arange(0, 4 * len(quads) + 1, 4, dtype=np.int32)
     reflectance = np.full((len(quads), 3), 0.5, dtype=np.float32)
     emission = np.zeros((len(quads), 3), dtype=np.float32)
-    emission[0] = 1.0
+    emission[1] = 1.0
     return v, offsets, corners, reflectance, emission
+
+
+def fronts(result, key="element_radiance"):
+    """`key` of the elements that are not an emitting polygon's back side: emitting polygons are
+    two-sided, and an emitting box's back sides face out (their radiance is their emission)."""
+    return result[key][~result["element_back"]]
 
 
 class FurnaceTest(unittest.TestCase):
@@ -53,7 +60,8 @@ class FurnaceTest(unittest.TestCase):
         result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
                             tolerance=1e-7)
         expected = emitted / (1.0 - rho)
-        np.testing.assert_allclose(result["element_radiance"], expected, rtol=1e-4)
+        np.testing.assert_allclose(fronts(result), expected, rtol=1e-4)
+        np.testing.assert_allclose(result["element_radiance"][result["element_back"]], emitted)  # they face out
         np.testing.assert_allclose(result["corner_radiance"], expected, rtol=1e-4)
         self.assertTrue(result["converged"])
 
@@ -62,7 +70,7 @@ class FurnaceTest(unittest.TestCase):
         for method in ("gauss_seidel", "jacobi", "progressive"):
             with self.subTest(method=method):
                 result = _core.bake(*arrays, element_size=0.5, resolution=32, method=method, tolerance=1e-8)
-                np.testing.assert_allclose(result["element_radiance"], 2.0, rtol=1e-5)
+                np.testing.assert_allclose(fronts(result), 2.0, rtol=1e-5)
 
 
 class OutputShapesTest(unittest.TestCase):
@@ -70,7 +78,9 @@ class OutputShapesTest(unittest.TestCase):
         arrays = box_arrays()
         result = _core.bake(*arrays, element_size=0.5, resolution=16)
         elements = result["elements"]
-        self.assertEqual(elements, 6 * 4)
+        self.assertEqual(elements, 2 * 6 * 4)  # the emitting walls' back sides too
+        self.assertEqual(result["element_back"].shape, (elements,))
+        self.assertEqual(int(result["element_back"].sum()), 6 * 4)
         self.assertEqual(result["corner_radiance"].shape, (24, 3))
         self.assertEqual(result["corner_radiance"].dtype, np.float32)
         self.assertEqual(result["element_radiance"].shape, (elements, 3))
@@ -78,16 +88,16 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_corners"].dtype, np.int32)
         self.assertEqual(result["element_corner_radiance"].shape, (elements, 4, 3))
         self.assertEqual(result["element_polygon"].shape, (elements,))
-        self.assertAlmostEqual(float(result["element_area"].sum()), 6.0, places=5)
+        self.assertAlmostEqual(float(fronts(result, "element_area").sum()), 6.0, places=5)
         self.assertEqual(set(result["seconds"]), {"elements", "lights", "form_factors", "solve", "interpolate"})
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()
         layout = _core.elements(*arrays, element_size=0.3)
         result = _core.bake(*arrays, element_size=0.3, resolution=16)
-        for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
+        for key in ("element_vertices", "element_corners", "element_polygon", "element_area", "element_back"):
             np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
-        self.assertEqual(layout["elements"], 6 * 16)
+        self.assertEqual(layout["elements"], 2 * 6 * 16)  # the emitting walls' back sides too
         self.assertEqual(layout["skipped"], [])
 
     def test_elements_have_the_bakes_contact_cuts(self):
@@ -96,7 +106,7 @@ class OutputShapesTest(unittest.TestCase):
         arrays = block_on_floor_arrays()
         layout = _core.elements(*arrays, element_size=0.5)
         result = _core.bake(*arrays, element_size=0.5, resolution=16)
-        self.assertGreater(result["elements"], 22)  # 16 floor + 6 block elements without the cut
+        self.assertGreater(result["elements"], 23)  # without the cut: 16 floor, 6 block, the top's back side
         for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
             np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
 
@@ -263,7 +273,7 @@ class ProgressMonitorTest(unittest.TestCase):
                                               tolerance=1e-6)
         thread.join(60)
         self.assertFalse(thread.is_alive())
-        np.testing.assert_allclose(outcome["result"]["element_radiance"], 2.0, rtol=1e-5)
+        np.testing.assert_allclose(fronts(outcome["result"]), 2.0, rtol=1e-5)
         last = monitor.snapshot()
         self.assertEqual(last["phase"], "solve")
         self.assertEqual(last["radiance"].shape, (outcome["result"]["elements"], 3))

@@ -38,6 +38,16 @@ struct Elements {
     /// Bit k: the edge from corner k to corner k + 1 lies where another polygon passes through this
     /// element's polygon; corner colours do not blend across it. Empty = no such edges.
     std::vector<uint8_t> cut_edges;
+    /// Emitting polygons are two-sided, as in Cycles, where a face with an emissive material emits
+    /// (and reflects) from both sides: build_elements gives each of their elements a back side, a
+    /// twin on the same vertices with its corners reversed (normal, centre, area, polygon,
+    /// reflectance and emission as the front's, normal negated), appended after all the fronts.
+    /// Per element: kOneSided, kFront (of such a pair) or kBack. The twins never hide each other:
+    /// an element that has a twin, seen from behind, is left to its twin (hemi-cube, sun raster).
+    /// A back side is solved like any element but its colours are not written (the mesh shows its
+    /// front, as Blender draws it): interpolation skips it. Empty = every element one-sided.
+    std::vector<uint8_t> side;
+    static constexpr uint8_t kOneSided = 0, kFront = 1, kBack = 2;
 
     /// Input corner -> element vertex holding the polygon's corner (for writing back colours);
     /// -1 for corners of skipped (degenerate) polygons.
@@ -45,6 +55,10 @@ struct Elements {
 
     std::size_t size() const { return centre.size(); }
     bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
+    /// Whether element e is one of a front and back pair (see `side`).
+    bool has_twin(std::size_t e) const { return !side.empty() && side[e] != kOneSided; }
+    /// Whether element e is the back side of an emitting polygon (see `side`).
+    bool is_back(std::size_t e) const { return !side.empty() && side[e] == kBack; }
 };
 
 /// Why a polygon was left out.
@@ -75,8 +89,11 @@ struct ElementLimits {
     /// that no element straddles an intersection and leaks light across it (docs/stability.md).
     bool cut_intersections = true;
     /// With cut_intersections: cut them along contact lines too, where another polygon stands on
-    /// them (a box on a floor), so no element straddles the footprint's outline. Off here, on in
-    /// the uniform and hierarchical bakes (BakeSettings::limits, HierarchySettings::limits).
+    /// them (a box on a floor), so no element straddles the footprint's outline; and along the
+    /// outline of an emitting polygon hung close in front of them (parallel, within a tenth of its
+    /// longest edge, its back side towards them: a panel under a ceiling), so no element straddles
+    /// the edge of the light its back side casts. Off here, on in the uniform and hierarchical
+    /// bakes (BakeSettings::limits, HierarchySettings::limits).
     bool cut_contacts = false;
 
     /// These limits with contact cuts on.
@@ -89,7 +106,9 @@ struct ElementLimits {
 
 /// Splits every polygon into elements whose edges are at most `max_edge` metres long
 /// (0 = one element per polygon; n-gons are always split into triangles and quads), after cutting
-/// it along the lines where other polygons pass through it (`limits.cut_intersections`).
+/// it along the lines where other polygons pass through it (`limits.cut_intersections`). Every
+/// element of an emitting polygon (emission > 0 in any channel) gets a back side (Elements::side),
+/// after all the polygons' elements.
 /// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
 /// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.
 BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {});
