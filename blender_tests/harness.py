@@ -99,7 +99,8 @@ def corner_colors(mesh, name):
     """(loops, 3) float array of a FLOAT_COLOR corner attribute."""
     import numpy as np
     attribute = mesh.color_attributes[name]
-    assert attribute.domain == "CORNER" and attribute.data_type == "FLOAT_COLOR", (attribute.domain, attribute.data_type)
+    assert attribute.domain == "CORNER" and attribute.data_type == "FLOAT_COLOR", \
+        (attribute.domain, attribute.data_type)
     values = np.empty(len(mesh.loops) * 4, dtype=np.float32)
     attribute.data.foreach_get("color", values)
     return values.reshape(-1, 4)[:, :3].astype(np.float64)

@@ -19,8 +19,9 @@ LAMP_CELLS = (3, 5)
 def fog_box_scene(work):
     scenes.clear_scene()
     walls = scenes.diffuse("Walls", (0.6, 0.6, 0.6))
+    # No wall at y = 0: the camera looks in.
     sides = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, 1)),
-             ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0))]  # no wall at y = 0: the camera looks in
+             ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0))]
     pieces = [scenes.grid(o, u, v, CELLS, CELLS) + (0,) for o, u, v in sides]
     ceiling_vertices, ceiling_quads = scenes.grid((0, 0, 1), (0, 1, 0), (1, 0, 0), CELLS, CELLS)  # normal -Z
     row, column = np.divmod(np.arange(CELLS * CELLS), CELLS)

@@ -83,7 +83,8 @@ def test_parallel_plates():
         expected = rho * point_to_unit_square(x, y)
         error = np.abs(colors[corner] / expected - 1).max()
         worst = max(worst, error)
-        print("point (%.1f, %.1f): baked %.6f, exact %.6f, error %.2f%%" % (x, y, colors[corner][0], expected, 100 * error))
+        print("point (%.1f, %.1f): baked %.6f, exact %.6f, error %.2f%%"
+              % (x, y, colors[corner][0], expected, 100 * error))
     assert worst < 0.02, "worst corner error %.2f%%" % (100 * worst)
 
 

@@ -197,7 +197,6 @@ def test_linked_duplicates_are_named_or_get_their_own_meshes():
     assert bpy.data.objects["Near"].data == bpy.data.objects["Far"].data
 
 
-
 def room_lit_by_area_lamp(shape, size):
     """The closed 2 m room of albedo 0.7, lit by a 100 W area lamp of `shape` facing down 10 cm
     under the ceiling."""
@@ -232,7 +231,6 @@ def test_a_disk_lamp_costs_what_a_square_one_does():
     disk, square = results["DISK"], results["SQUARE"]
     assert disk[1] == 1 and disk[0] <= 2 * square[0], (disk, square)
     assert abs(disk[2] / square[2] - 1.0) < 0.02, (disk, square)
-
 
 
 harness.run(test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour,

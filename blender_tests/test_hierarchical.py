@@ -127,8 +127,8 @@ def test_a_lamps_shadow_is_sharp_on_coarse_elements():
     r2 = (points[:, 0] ** 2 + points[:, 1] ** 2 + LAMP_HEIGHT ** 2)
     exact = np.where(shadowed, 0.0, RHO * 10.0 / (4.0 * math.pi) * LAMP_HEIGHT / np.sqrt(r2) / (math.pi * r2))
     error = np.abs(colors[:, 0] - exact) / exact.max()
-    print("%d faces; corners against rho I cos / (pi r^2): worst %.2e of the brightest" % (len(mesh.polygons),
-                                                                                       error.max()))
+    print("%d faces; corners against rho I cos / (pi r^2): worst %.2e of the brightest"
+          % (len(mesh.polygons), error.max()))
     assert error.max() < 1e-4, error.max()
 
     # Faces across the shadow's outline are 6.25 cm or finer; the rest stay coarse.
@@ -244,7 +244,8 @@ def test_copies_keep_a_blocks_footprint_dark_and_the_floor_around_it_lit():
     # Corners of faces outside the footprint that lie on its outline: the lit side.
     on_lit_side = ~in_footprint & within_outline
     dark_side, lit_side = colors[in_footprint].max(), np.abs(colors[on_lit_side] - lit).max()
-    print("corners on the box's outline: dark side %.2e, lit side %.2e of rho E / pi" % (dark_side / lit, lit_side / lit))
+    print("corners on the box's outline: dark side %.2e, lit side %.2e of rho E / pi"
+          % (dark_side / lit, lit_side / lit))
     assert on_lit_side.sum() > 0 and in_footprint.sum() > 0
     assert dark_side < 1e-4 * lit and lit_side < 1e-4 * lit, (dark_side / lit, lit_side / lit)
 

@@ -398,5 +398,6 @@ def test_thin_quads_are_cut():
 
 
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
-            test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one, test_small_distant_lamp_sets_the_resolution,
-            test_tiny_lamp_past_the_cap_adds_rotations, test_near_field_at_medium_and_high, test_thin_quads_are_cut)
+            test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one,
+            test_small_distant_lamp_sets_the_resolution, test_tiny_lamp_past_the_cap_adds_rotations,
+            test_near_field_at_medium_and_high, test_thin_quads_are_cut)

@@ -51,7 +51,8 @@ def test_cancel_changes_nothing():
     reported = worker.monitor.snapshot()
     worker.cancel()
     worker.thread.join(timeout=600)
-    assert reported is not None and reported["phase"] == "form_factors" and reported["done"] < reported["total"], reported
+    assert reported is not None and reported["phase"] == "form_factors", reported
+    assert reported["done"] < reported["total"], reported
     assert worker.done and worker.cancelled and worker.error is None, (worker.done, worker.cancelled, worker.error)
     assert harness.file_state() == before
 

@@ -6,7 +6,8 @@
 Writes baking.png (an interactive progressive
 bake under way: status bar and the brightening viewport), baked.png (the finished bake in
 the preview shading), panel.png (Properties > Render maximized, the Radiosity panel with the
-bake's summary; run with a tall screen, e.g. 1000x1800, to see all of it), then quits. Needs the add-on enabled in the profile it runs with."""
+bake's summary; run with a tall screen, e.g. 1000x1800, to see all of it), then quits. Needs the
+add-on enabled in the profile it runs with."""
 
 import os
 import sys

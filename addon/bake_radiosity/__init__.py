@@ -12,7 +12,7 @@ bl_info = {
     "category": "Render",
 }
 
-import importlib
+import importlib  # noqa: E402  (bl_info first: Blender reads it without running the module)
 
 MODULE_NAMES = ("properties", "operators", "ui")
 _modules = [importlib.import_module("." + name, __package__) for name in MODULE_NAMES]
@@ -21,7 +21,7 @@ _modules = [importlib.import_module("." + name, __package__) for name in MODULE_
 if "bpy" in locals():
     _modules = [importlib.reload(module) for module in _modules]
 
-import bpy  # noqa: E402  (after the reload check above, as Blender's own add-ons do)
+import bpy  # noqa: E402, F401  (after the reload check above, as Blender's own add-ons do)
 
 
 def bake(scene, **overrides):

@@ -11,7 +11,8 @@ import numpy as np
 # (resolution 56, 136, 236; near field at Medium and High; and with 1/8 m elements, resolution
 # 128, below Draft), from
 # docs/charts/bake_vs_cycles.csv: (elements, relative RMS corner error against a converged
-# radiosity bake with 1/64 m elements, against Cycles' converged bake). The first column measures discretisation; the second adds what radiosity does
+# radiosity bake with 1/64 m elements, against Cycles' converged bake). The first column measures
+# discretisation; the second adds what radiosity does
 # not model the way Cycles does (2.1% between the two converged bakes).
 MEASURED = (
     (428, 0.114, 0.122),

@@ -141,7 +141,8 @@ def _scaled_number(socket, shader):
 
 def _plain_number(socket, shader):
     if socket.is_linked:
-        shader.problems.append("'%s' input is driven by nodes; using its value %.3g" % (socket.name, socket.default_value))
+        shader.problems.append("'%s' input is driven by nodes; using its value %.3g"
+                               % (socket.name, socket.default_value))
     return float(socket.default_value)
 
 

@@ -53,8 +53,9 @@ def draw_panel(layout, context):
             column.prop(settings, "refine_tolerance")
         column.prop(settings, "max_iterations")
     else:
+        near_field = ", near field" if preset.near_field else ""
         column.label(text="Elements 1/%d of the scene, resolution from the scene (%g cells)%s, tolerance %g, "
-                          "refinement %g" % (preset.divisions, preset.cells, ", near field" if preset.near_field else "",
+                          "refinement %g" % (preset.divisions, preset.cells, near_field,
                                              preset.tolerance, preset.refine_tolerance))
     column.prop(settings, "memory_budget", text="Memory Budget (MB)")
     column.prop(settings, "hard_edge_angle")

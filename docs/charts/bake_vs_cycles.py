@@ -142,7 +142,8 @@ def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     omega = 1.0 if method == "GAUSS_SEIDEL_PLAIN" else auto_settings.AUTOMATIC_OVER_RELAXATION
     presets = auto_settings.PRESETS if near_field is None else {
         name: dataclasses.replace(preset, near_field=near_field) for name, preset in auto_settings.PRESETS.items()}
-    with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", omega), harness.patched_setting("PRESETS", presets), Stopwatch() as seconds:
+    with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", omega), harness.patched_setting("PRESETS", presets), \
+            Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", **settings)
     return corner_colors(obj.data, "Radiosity"), seconds, summary
 
@@ -168,8 +169,8 @@ def cornell_rows(addon):
     radiosity_reference = colors[keep]
     gap = relative_rms(radiosity_reference, cycles_reference, cycles_noise)
     print("Cornell references: Cycles %d samples (noise %.3f%%), radiosity %d elements in %.1f s; they differ "
-          "by %.2f%%" % (2 * CYCLES_REFERENCE_SAMPLES, 100 * cycles_noise, summary["elements"], seconds.wall, 100 * gap),
-          flush=True)
+          "by %.2f%%" % (2 * CYCLES_REFERENCE_SAMPLES, 100 * cycles_noise, summary["elements"], seconds.wall,
+                         100 * gap), flush=True)
     rows = [row("cornell", "radiosity_reference", seconds, 0.0, gap, method="GAUSS_SEIDEL", quality="CUSTOM",
                 element_size=CORNELL_REFERENCE["element_size"], resolution=256, tolerance=1e-6,
                 elements=summary["elements"])]

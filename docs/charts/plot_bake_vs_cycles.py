@@ -127,14 +127,16 @@ def ratio_lines(rows, clock):
                     and r["renderer"] == "radiosity" and r["method"] == method and not near_field(r)]
             parts = []
             for level in LEVELS:
-                (t_ours, ours_first), (t_cycles, cycles_first) = time_to_reach(ours, level), time_to_reach(cycles, level)
+                t_ours, ours_first = time_to_reach(ours, level)
+                t_cycles, cycles_first = time_to_reach(cycles, level)
                 if t_ours is None or t_cycles is None:
                     who = " and ".join(n for n, t in (("radiosity", t_ours), ("Cycles", t_cycles)) if t is None)
                     parts.append("%g%%: not reached by %s" % (100 * level, who))
                     continue
                 note = " (Cycles below it at its fastest bake: ratio is a lower bound)" if cycles_first else ""
                 note += " (radiosity below it at its fastest bake: ratio is an upper bound)" if ours_first else ""
-                parts.append("%g%%: %.3g s / %.3g s = %.2g%s" % (100 * level, t_ours, t_cycles, t_ours / t_cycles, note))
+                parts.append("%g%%: %.3g s / %.3g s = %.2g%s"
+                             % (100 * level, t_ours, t_cycles, t_ours / t_cycles, note))
             lines.append("  %-18s %s" % (method.lower(), "; ".join(parts)))
     return lines
 

@@ -87,7 +87,8 @@ def oracle_bounds(scene, uniform, oracle):
     for size, elements, error in uniform:
         cells = []
         for split in splits:
-            curve = [(int(r["elements"]), float(r["rms"])) for r in oracle if r["scene"] == scene and r["split"] == split]
+            curve = [(int(r["elements"]), float(r["rms"])) for r in oracle
+                     if r["scene"] == scene and r["split"] == split]
             equal = oracle_elements_at(error, curve)
             cells.append(f"{split} {equal:8.0f} {elements / equal:6.2f}")
         out.append(f"  {size:>6} {elements:>8} {error:.4f}   " + "   ".join(cells))
@@ -117,7 +118,8 @@ def accuracy(rows, png, txt, oracle):
         for split in sorted({r["split"] for r in oracle if r["scene"] == scene}):
             curve = [r for r in oracle if r["scene"] == scene and r["split"] == split]
             ax.loglog([int(r["elements"]) for r in curve], [float(r["rms"]) for r in curve], color="grey",
-                      linestyle=":" if split == "quadtree" else "-.", label=f"oracle, {split} (the truth at the corners)")
+                      linestyle=":" if split == "quadtree" else "-.",
+                      label=f"oracle, {split} (the truth at the corners)")
         agree = next(r for r in mine if r["method"] == "reference_uniform")
         ax.axhline(float(agree["rms"]), color="grey", linewidth=0.8, label="the two references' difference")
         # Below the references' difference the oracle only retraces the reference's own mesh.

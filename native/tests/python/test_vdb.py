@@ -118,7 +118,8 @@ class WriteTest(unittest.TestCase):
             grids = {g.name: g for g in vdb.readAll(path)[0]}
             self.assertEqual(grids["density"].activeVoxelCount(), 1)
             self.assertEqual(grids["density"].getConstAccessor().getValue((3, 2, 1)), 5.0)
-            np.testing.assert_allclose(grids["emission"].getConstAccessor().getValue((2, 1, 0)), (0.1, 0.2, 0.3), rtol=1e-6)
+            np.testing.assert_allclose(grids["emission"].getConstAccessor().getValue((2, 1, 0)), (0.1, 0.2, 0.3),
+                                       rtol=1e-6)
             # Voxel (0, 0, 0)'s centre is the first cell's centre.
             np.testing.assert_allclose(grids["density"].transform.indexToWorld((0, 0, 0)), (1.25, 2.25, 3.25))
 
