@@ -29,4 +29,11 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
                                  const int32_t* material, float hard_edge_angle,
                                  const std::vector<Rgb>* corner_light = nullptr);
 
+/// Replaces the colours of the slots (4 per element, as `corner_light`) marked in `known` by the
+/// mean of `slot_value` over the known slots of their compatible set (the elements that share the
+/// slot's colour: a smooth surface's corners keep one value), clamped at zero, and the input
+/// corners on them. The final gather's values in place of interpolated ones.
+void replace_corners(const Elements& elements, const int32_t* material, float hard_edge_angle,
+                     const std::vector<Rgb>& slot_value, const std::vector<uint8_t>& known, CornerColors& colors);
+
 }  // namespace radiosity

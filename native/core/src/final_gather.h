@@ -1,0 +1,42 @@
+/// @file final_gather.h
+/// @brief The uniform bake's final gather at its output corners (internal; bake.h's FinalGatherSettings).
+///
+/// The radiosity solution is kept for the smooth indirect light; what the artist sees at each
+/// output corner is computed at the corner itself (Lischinski, Tampieri & Greenberg 1993's local
+/// pass; the final gather of photon maps):
+///   L(x) = L_e(x) + rho(x) [direct(x) + indirect(x)]
+///  - direct(x) = sum over emitting elements j of L_e,j F_xj V_xj, with F_xj the exact unoccluded
+///    point-to-polygon factor (Lambert's contour integral, near_field.h) and V_xj the share of j
+///    that stratified shadow rays find unhidden (each weighted by cos cos / r^2), plus the lamps'
+///    irradiance at x / pi (one shadow ray per lamp, lamp_points.h);
+///  - indirect(x) = the mean, over stratified cosine-weighted rays, of the first element hit's
+///    solved radiance less its own emission (emission is direct's; lamps' first reflection,
+///    which the solve folds into the elements' emission, is indirect light and is counted).
+///    Misses and back faces bring nothing (as in the hemi-cube).
+/// The point x is the corner's element vertex moved a hair into its element (towards the
+/// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
+/// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
+/// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
+/// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way); if it
+/// is still buried, it keeps the interpolated colour. Every element vertex holding an input
+/// corner is gathered once; corners of one smooth surface then share the mean of their
+/// compatible set's gathered values (replace_corners), as interpolation shares its values.
+/// Seeds come from the vertex and element indices, so the result does not depend on threads.
+#pragma once
+
+#include "radiosity/bake.h"
+
+namespace radiosity::detail {
+
+struct GatherCounts {
+    std::size_t gathered = 0, buried = 0;
+};
+
+/// Replaces `colors` at the output corners. `emitted` is each element's own emission (without the
+/// lamps' first reflection), `radiance` the solved radiance. Progress phase "gather", one unit per
+/// output vertex; throws Cancelled.
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
+                          const Lights& lights, const FinalGatherSettings& settings, const int32_t* material,
+                          float hard_edge_angle, CornerColors& colors, const ProgressFn& progress);
+
+}  // namespace radiosity::detail
