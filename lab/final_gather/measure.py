@@ -33,6 +33,7 @@ parser.add_argument("--addon-zip", required=True)
 parser.add_argument("--reference", required=True)
 parser.add_argument("--quality", default="MEDIUM")
 parser.add_argument("--rays", default="64,256,1024")
+parser.add_argument("--save", help="folder for each bake's corner colours (.npy)")
 args = parser.parse_args(argv)
 
 assert bpy.ops.preferences.addon_install(filepath=os.path.abspath(args.addon_zip), overwrite=True) == {"FINISHED"}
@@ -93,6 +94,13 @@ def bake(quality, gather_rays):
     finally:
         auto_settings.Choice.stability_keywords = original
     colors = harness.corner_colors(mesh, "Radiosity")[keep]
+    if args.save:
+        os.makedirs(args.save, exist_ok=True)
+        np.save(os.path.join(args.save, "%s_%s.npy" % (quality, gather_rays or "off")), colors)
+        np.save(os.path.join(args.save, "positions.npy"), positions[keep])
+        np.save(os.path.join(args.save, "normals.npy"), corner_normal[keep])
+        np.save(os.path.join(args.save, "reference.npy"), reference)
+        np.save(os.path.join(args.save, "seam.npy"), seam[keep])
     s = seam[keep]
     squared = ((colors - reference) ** 2).sum(axis=1)
     print("%-6s gather %-5s: %d elements, resolution %d, CPU %.2f s, wall %.2f s: relative RMS %.2f%% "

@@ -9,19 +9,23 @@
 ///    point-to-polygon factor (Lambert's contour integral, near_field.h) and V_xj the share of j
 ///    that stratified shadow rays find unhidden (each weighted by cos cos / r^2), plus the lamps'
 ///    irradiance at x / pi (one shadow ray per lamp, lamp_points.h);
-///  - indirect(x) = the mean, over stratified cosine-weighted rays, of the first element hit's
-///    solved radiance less its own emission (emission is direct's; lamps' first reflection,
-///    which the solve folds into the elements' emission, is indirect light and is counted).
-///    Misses and back faces bring nothing (as in the hemi-cube).
+///  - indirect(x) = the mean, over stratified cosine-weighted rays, of the solved radiance where
+///    the ray first hits an element, less that element's own emission (emission is direct's;
+///    lamps' first reflection, which the solve folds into the elements' emission, is indirect
+///    light and is counted). The solved radiance there is the element's interpolated corner
+///    colours blended at the hit point (smooth next to seams, where the flat element value is
+///    not). Misses and back faces bring nothing (as in the hemi-cube).
 /// The point x is the corner's element vertex moved a hair into its element (towards the
 /// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
 /// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
 /// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
 /// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way); if it
 /// is still buried, it keeps the interpolated colour. Every element vertex holding an input
-/// corner is gathered once; corners of one smooth surface then share the mean of their
-/// compatible set's gathered values (replace_corners), as interpolation shares its values.
-/// Seeds come from the vertex and element indices, so the result does not depend on threads.
+/// corner is gathered once, so each face's corner has its own value: where a block stands on a
+/// floor, the floor's faces around the block's corner see it differently. Where a smooth surface
+/// bends, its faces' corners share their mean (replace_corners, interpolation.h). Seeds come from
+/// the vertex's position (welded), so faces meeting at a vertex use the same rays and differ
+/// only where the light does, and the result does not depend on threads.
 #pragma once
 
 #include "radiosity/bake.h"
@@ -32,11 +36,10 @@ struct GatherCounts {
     std::size_t gathered = 0, buried = 0;
 };
 
-/// Replaces `colors` at the output corners. `emitted` is each element's own emission (without the
-/// lamps' first reflection), `radiance` the solved radiance. Progress phase "gather", one unit per
-/// output vertex; throws Cancelled.
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-                          const Lights& lights, const FinalGatherSettings& settings, const int32_t* material,
+/// Replaces `colors` (interpolated from the solved radiance) at the output corners. `emitted` is
+/// each element's own emission (without the lamps' first reflection). Progress phase "gather",
+/// one unit per output vertex; throws Cancelled.
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights, const FinalGatherSettings& settings, const int32_t* material,
                           float hard_edge_angle, CornerColors& colors, const ProgressFn& progress);
 
 }  // namespace radiosity::detail

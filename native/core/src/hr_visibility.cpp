@@ -92,6 +92,8 @@ Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, f
     if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         hit.patch = static_cast<int32_t>(query.hit.primID);
         hit.distance = query.ray.tfar;
+        hit.u = query.hit.u;
+        hit.v = query.hit.v;
     }
     return hit;
 }

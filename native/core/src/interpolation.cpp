@@ -392,8 +392,11 @@ void replace_corners(const Elements& elements, const int32_t* material, float ha
             if (!known[s]) continue;
             Rgb sum(0.0);
             int count = 0;
+            // Coplanar neighbours keep their own values: on a flat surface the light at a vertex
+            // differs between faces only where it is discontinuous (a block's corner on a floor).
             for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t)
-                if (known[*t]) {
+                if (known[*t] && (*t == s || elements.corners[Slots::element_of(*t)][Slots::corner_of(*t)] == elements.corners[e][k] ||
+                                  glm::dot(elements.normal[Slots::element_of(*t)], elements.normal[e]) < 1.0f - 1e-5f)) {
                     sum += slot_value[*t];
                     ++count;
                 }
