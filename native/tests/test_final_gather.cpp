@@ -81,6 +81,49 @@ TEST(FinalGather, FloorUnderASquareEmitterIsExact) {
     }
 }
 
+TEST(FinalGather, WallStandingUnderTheEmitterHidesExactlyHalfOfIt) {
+    // As above, with a thin black wall (x in [-1 mm, 0], 0.3 m high, no bottom) standing on the
+    // floor along y under the emitter's centre line. The floor's corners at the origin on the +x
+    // side lie at the wall's foot, a seam: their shadow rays see exactly the emitter's +x half (its
+    // elements split at x = 0). Those on the -x side are inside the wall (buried, and so is their
+    // element, cut along the wall's footprint): they are gathered further into their polygon.
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
+    test::SceneArrays s;
+    s.add_quad({-0.5f, -0.5f, float(h)}, {-0.5f, 0.5f, float(h)}, {0.5f, 0.5f, float(h)}, {0.5f, -0.5f, float(h)},
+               Rgb(0.0), Le, 1);  // normal -z
+    add_floor(s, rho);
+    const float x0 = -0.001f, x1 = 0.0f, y0 = -1.0f, y1 = 1.0f, z1 = 0.3f;
+    const Rgb black(0.0);
+    s.add_quad({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, black, black, 2);  // top, +z
+    s.add_quad({x0, y0, 0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, 0}, black, black, 2);    // -x
+    s.add_quad({x1, y0, 0}, {x1, y1, 0}, {x1, y1, z1}, {x1, y0, z1}, black, black, 2);    // +x
+    s.add_quad({x0, y0, 0}, {x1, y0, 0}, {x1, y0, z1}, {x0, y0, z1}, black, black, 2);    // -y
+    s.add_quad({x0, y1, 0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, 0}, black, black, 2);    // +y
+    const Rgb expected = rho * Le * (2.0 * corner_factor(0.5, 0.5, h));
+    std::vector<std::size_t> lit;  // the corners at the origin of the floor quads on the +x side
+    for (const std::size_t c : corners_at(s, Vec3(0.0f)))
+        if (c < 4 * 5 && (c / 4 == 1 || c / 4 == 4)) lit.push_back(c);
+    ASSERT_EQ(lit.size(), 2u);
+    for (const bool gather : {false, true}) {
+        const BakeResult r = bake(s.input(), gather_settings(0.5f, gather));
+        double worst = 0.0;
+        for (const std::size_t c : lit)
+            for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+        for (const Rgb& L : r.colors.input_corner)
+            for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(L[k]) && L[k] >= 0.0);
+        std::printf("gather %d: floor at the wall's foot %.6f (exact %.6f), worst relative error %.2e; "
+                    "%zu points gathered, %zu buried\n",
+                    int(gather), r.colors.input_corner[lit[0]].g, expected.g, worst, r.gathered_points, r.buried_points);
+        if (gather) {
+            EXPECT_LT(worst, 1e-3);
+            EXPECT_EQ(r.buried_points, 0u);
+        } else {
+            EXPECT_GT(worst, 2e-2);
+        }
+    }
+}
+
 TEST(FinalGather, FloorUnderAPointLampIsExact) {
     // A point lamp of intensity I at height h over the floor's centre: the vertex under it has
     // L = rho I / (pi h^2) exactly; the rest of the floor lights it only by what escapes (nothing).

@@ -44,19 +44,34 @@ public:
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
 
-    /// The radiance at element vertex `vertex` of element `e`; false when the point is buried.
-    /// `place` seeds the rays: vertices at one place get the same directions, so coplanar faces
-    /// around a vertex differ only where the light does.
-    bool radiance_at(int32_t vertex, std::size_t e, uint32_t place, Rgb& out) const {
+    /// The radiance at element vertex `vertex` of element `e` (of a polygon centred at
+    /// `polygon_centre`); false when the point is buried. `place` seeds the rays: vertices at one
+    /// place get the same directions, so coplanar faces around a vertex differ only where the
+    /// light does.
+    bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, uint32_t place, Rgb& out) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
         const Vec3 n = elements_.normal[e];
         const uint32_t seed = mix_seed(place, 0x5EEDU);
-        for (const float fraction : {1e-3f, 0.1f, 0.5f}) {
-            float step = fraction * to_centre;
-            if (fraction == 1e-3f) step = std::min(step, 1e-4f * scene_size_);
-            const Vec3 x = to_centre > 0.0f ? corner + (step / to_centre) * towards : corner;
+        // A hair into the element; if that is buried, further in, then further into the polygon
+        // (its element may lie wholly under what buries it: a floor cut along a wall's footprint).
+        std::array<Vec3, 6> candidates;
+        int count = 0;
+        if (to_centre > 0.0f) {
+            candidates[count++] = corner + (std::min(1e-3f * to_centre, 1e-4f * scene_size_) / to_centre) * towards;
+            candidates[count++] = corner + 0.1f * towards;
+            candidates[count++] = corner + 0.5f * towards;
+            const Vec3 inwards = polygon_centre - corner;
+            const float to_polygon_centre = glm::length(inwards);
+            for (const float distance : {1.0f, 2.0f, 4.0f})
+                if (distance * to_centre < 0.9f * to_polygon_centre)
+                    candidates[count++] = corner + (distance * to_centre / to_polygon_centre) * inwards;
+        } else {
+            candidates[count++] = corner;
+        }
+        for (int i = 0; i < count; ++i) {
+            const Vec3 x = candidates[i];
             const Vec3 origin = x + (1e-5f * scene_size_) * n;
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect)) continue;  // buried: further in
@@ -219,6 +234,22 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     }
     const std::vector<Rgb> corner_field = colors.element_corner;  // interpolated, before the gather replaces any
     const Gatherer gatherer(elements, emitted, lights, settings, emitters, visibility, scene_size, corner_field);
+    // Polygon centres (area-weighted element centres) for points buried at their element.
+    std::vector<glm::dvec3> polygon_sum;
+    std::vector<double> polygon_area;
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const std::size_t p = std::size_t(elements.polygon[e]);
+        if (p >= polygon_sum.size()) {
+            polygon_sum.resize(p + 1, glm::dvec3(0.0));
+            polygon_area.resize(p + 1, 0.0);
+        }
+        polygon_sum[p] += double(elements.area[e]) * glm::dvec3(elements.centre[e]);
+        polygon_area[p] += double(elements.area[e]);
+    }
+    auto polygon_centre = [&](std::size_t e) {
+        const std::size_t p = std::size_t(elements.polygon[e]);
+        return polygon_area[p] > 0.0 ? Vec3(polygon_sum[p] / polygon_area[p]) : elements.centre[e];
+    };
     std::size_t places = 0;
     const std::vector<int32_t> place = weld_points(elements.vertices, weld_tolerance(elements.vertices), places);
 
@@ -226,7 +257,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     std::vector<uint8_t> done(outputs.size(), 0);
     parallel_rows("gather", outputs.size(), 4, 0, progress, [&](std::size_t i) {
         Rgb L;
-        if (gatherer.radiance_at(outputs[i], std::size_t(element_at[outputs[i]]), uint32_t(place[outputs[i]]), L) &&
+        const std::size_t e = std::size_t(element_at[outputs[i]]);
+        if (gatherer.radiance_at(outputs[i], e, polygon_centre(e), uint32_t(place[outputs[i]]), L) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[i] = L;
             done[i] = 1;

@@ -19,8 +19,10 @@
 /// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
 /// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
 /// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
-/// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way); if it
-/// is still buried, it keeps the interpolated colour. Every element vertex holding an input
+/// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
+/// towards its polygon's centre (1, 2 and 4 times as far as its element's centre: the element may
+/// lie wholly under what buries it, as a floor cut along a wall's footprint), so it takes its
+/// light from the visible side; if it is still buried, it keeps the interpolated colour. Every element vertex holding an input
 /// corner is gathered once, so each face's corner has its own value: where a block stands on a
 /// floor, the floor's faces around the block's corner see it differently. Where a smooth surface
 /// bends, its faces' corners share their mean (replace_corners, interpolation.h). Seeds come from
