@@ -20,10 +20,11 @@ argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 parser = argparse.ArgumentParser()
 parser.add_argument("--out", required=True)
 parser.add_argument("--samples", type=int, default=2048)
+parser.add_argument("--light", default="MESH", help="scenes.cornell_box's light: MESH, AREA or POINT")
 args = parser.parse_args(argv)
 
 scenes.clear_scene()
-box = scenes.cornell_box("MESH")
+box = scenes.cornell_box(args.light)
 halves = []
 for seed in (1, 2):
     harness.use_unbiased_cycles(args.samples, seed)

@@ -32,6 +32,7 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--addon-zip", required=True)
 parser.add_argument("--reference", required=True)
 parser.add_argument("--quality", default="MEDIUM")
+parser.add_argument("--light", default="MESH", help="scenes.cornell_box's light: MESH, AREA or POINT")
 parser.add_argument("--rays", default="64,256,1024")
 parser.add_argument("--save", help="folder for each bake's corner colours (.npy)")
 args = parser.parse_args(argv)
@@ -42,7 +43,7 @@ addon = sys.modules["bake_radiosity"]
 auto_settings = sys.modules["bake_radiosity.auto_settings"]
 
 scenes.clear_scene()
-box = scenes.cornell_box("MESH")
+box = scenes.cornell_box(args.light)
 mesh = box.data
 material = np.empty(len(mesh.polygons), dtype=np.int64)
 mesh.polygons.foreach_get("material_index", material)
