@@ -36,10 +36,10 @@ struct Emitter {
 /// The gather at one point: its element, where it starts and what it found.
 class Gatherer {
 public:
-    Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights, const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const hr::Visibility& visibility, float scene_size, const std::vector<Rgb>& corner_field)
-        : elements_(elements), emitted_(emitted), corner_field_(corner_field), lights_(lights),
-          emitters_(emitters),
+    Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& corner_field,
+             const Lights& lights, const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
+             const hr::Visibility& visibility, float scene_size)
+        : elements_(elements), emitted_(emitted), corner_field_(corner_field), lights_(lights), emitters_(emitters),
           visibility_(visibility), scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -201,8 +201,9 @@ private:
 
 }  // namespace
 
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights, const FinalGatherSettings& settings, const int32_t* material,
-                          float hard_edge_angle, CornerColors& colors, const ProgressFn& progress) {
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights,
+                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
+                          CornerColors& colors, const ProgressFn& progress) {
     GatherCounts counts;
     if (elements.size() == 0) return counts;
     // The element vertices holding input corners, each once, with one element around it.
@@ -233,7 +234,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         emitters.push_back(source);
     }
     const std::vector<Rgb> corner_field = colors.element_corner;  // interpolated, before the gather replaces any
-    const Gatherer gatherer(elements, emitted, lights, settings, emitters, visibility, scene_size, corner_field);
+    const Gatherer gatherer(elements, emitted, corner_field, lights, settings, emitters, visibility, scene_size);
     // Polygon centres (area-weighted element centres) for points buried at their element.
     std::vector<glm::dvec3> polygon_sum;
     std::vector<double> polygon_area;
@@ -266,7 +267,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         return true;
     });
 
-    // Every slot on a gathered vertex takes its value; smooth neighbours then share their mean.
+    // Every slot on a gathered vertex takes its value (where a smooth surface bends, the mean of
+    // its faces'); points still buried, or not finite, keep the interpolated colour.
     std::vector<int32_t> output_index(elements.vertices.size(), -1);
     for (std::size_t i = 0; i < outputs.size(); ++i) output_index[outputs[i]] = int32_t(i);
     std::vector<Rgb> slot_value(4 * elements.size(), Rgb(0.0));

@@ -22,12 +22,17 @@
 /// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
 /// towards its polygon's centre (1, 2 and 4 times as far as its element's centre: the element may
 /// lie wholly under what buries it, as a floor cut along a wall's footprint), so it takes its
-/// light from the visible side; if it is still buried, it keeps the interpolated colour. Every element vertex holding an input
-/// corner is gathered once, so each face's corner has its own value: where a block stands on a
-/// floor, the floor's faces around the block's corner see it differently. Where a smooth surface
-/// bends, its faces' corners share their mean (replace_corners, interpolation.h). Seeds come from
-/// the vertex's position (welded), so faces meeting at a vertex use the same rays and differ
-/// only where the light does, and the result does not depend on threads.
+/// light from the visible side; if it is still buried, it keeps the interpolated colour. Every
+/// element vertex holding an input corner is gathered once, so each face's corner has its own
+/// value: where a block stands on a floor, the floor's faces around the block's corner see it
+/// differently (as Cycles bakes them). Where a smooth surface bends, its faces' corners share
+/// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded),
+/// so faces meeting at a vertex use the same rays and differ only where the light does, and the
+/// result does not depend on threads.
+///
+/// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
+/// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
+/// whose emitters are split into thousands of elements pays for each at every corner).
 #pragma once
 
 #include "radiosity/bake.h"
@@ -38,10 +43,12 @@ struct GatherCounts {
     std::size_t gathered = 0, buried = 0;
 };
 
-/// Replaces `colors` (interpolated from the solved radiance) at the output corners. `emitted` is
+/// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
+/// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
 /// each element's own emission (without the lamps' first reflection). Progress phase "gather",
 /// one unit per output vertex; throws Cancelled.
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights, const FinalGatherSettings& settings, const int32_t* material,
-                          float hard_edge_angle, CornerColors& colors, const ProgressFn& progress);
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights,
+                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
+                          CornerColors& colors, const ProgressFn& progress);
 
 }  // namespace radiosity::detail
