@@ -169,6 +169,26 @@ TEST(FinalGather, FurnaceAtEveryCornerOfAClosedBox) {
     }
 }
 
+TEST(FinalGather, ABendingSmoothSurfaceKeepsOneColourPerVertex) {
+    // Two faces folded by 20 degrees (within the hard-edge angle) along y, under an emitter off to
+    // one side: each sees it differently, but the vertices they share show one colour, the mean
+    // of theirs, as interpolation would; the faces' far corners keep their own.
+    const Rgb rho(0.5), Le(1.0);
+    const float rise = std::tan(20.0f * float(M_PI) / 180.0f);
+    test::SceneArrays s;
+    s.add_quad({-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}, rho);                  // flat, +z
+    s.add_quad({0, 0, 0}, {1, 0, rise}, {1, 1, rise}, {0, 1, 0}, rho);              // rising, about +z
+    s.add_quad({-0.5f, 0, 1.5f}, {-0.5f, 1, 1.5f}, {1, 1, 1.5f}, {1, 0, 1.5f}, Rgb(0), Le, 1);  // emitter, -z
+    const BakeResult r = bake(s.input(), gather_settings(0.25f, true));
+    ASSERT_EQ(r.gathered_points, 12u);
+    for (const Vec3 ridge : {Vec3(0, 0, 0), Vec3(0, 1, 0)}) {
+        const std::vector<std::size_t> at = corners_at(s, ridge);
+        ASSERT_EQ(at.size(), 2u);
+        EXPECT_EQ(r.colors.input_corner[at[0]], r.colors.input_corner[at[1]]);
+        EXPECT_GT(r.colors.input_corner[at[0]].g, 0.0);
+    }
+}
+
 TEST(FinalGather, SameBakeTwiceIsBitIdentical) {
     const test::SceneArrays box = test::cornell_box();
     const BakeSettings settings = gather_settings(0.1f, true);
