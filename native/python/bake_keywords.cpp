@@ -66,6 +66,7 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     seconds["form_factors"] = result.seconds_form_factors;
     seconds["solve"] = result.seconds_solve;
     seconds["interpolate"] = result.seconds_interpolate;
+    seconds["gather"] = result.seconds_gather;
 
     add_elements(result.build, out);
     add_surface_solution(result.build.elements, result.solve.radiance, result.colors, out);
@@ -78,6 +79,12 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;
     out["seconds"] = seconds;
+    if (result.gathered_points + result.buried_points > 0) {  // the final gather ran
+        py::dict gather;
+        gather["points"] = result.gathered_points;
+        gather["buried"] = result.buried_points;
+        out["final_gather"] = gather;
+    }
 }
 
 void add_surface_solution(const Elements& elements, const std::vector<Rgb>& radiance, const CornerColors& colors,

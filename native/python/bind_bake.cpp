@@ -21,7 +21,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                      std::size_t matrix_budget_bytes,
                      const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
-                     std::size_t max_elements, int hemicube_rotations) {
+                     std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
+                     int gather_shadow_rays) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
@@ -31,6 +32,11 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.limits.max_aspect = max_element_aspect;
     settings.limits.max_elements = max_elements;
     settings.hemicube_rotations = hemicube_rotations;
+    if (gather_rays < 1) throw InputError("gather_rays must be >= 1");
+    if (gather_shadow_rays < 1) throw InputError("gather_shadow_rays must be >= 1");
+    settings.final_gather.enabled = final_gather;
+    settings.final_gather.rays = gather_rays;
+    settings.final_gather.shadow_rays = gather_shadow_rays;
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
@@ -92,7 +98,9 @@ void bind_bake(py::module_& m) {
           "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
           "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes,
           "progress"_a = py::none(), "near_field"_a = false, "over_relaxation"_a = 1.0,
-          "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1);
+          "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1,
+          "final_gather"_a = false, "gather_rays"_a = FinalGatherSettings().rays,
+          "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays);
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,

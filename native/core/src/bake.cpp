@@ -2,6 +2,8 @@
 /// @brief The surface bake pipeline: elements, form factors (stored or on demand), solve, corners.
 #include "radiosity/bake.h"
 
+#include "final_gather.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,6 +32,9 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
+    // The polygons' own emission, before the lamps' first reflection joins it (the final gather
+    // counts emission as direct light and everything else the solve found as indirect).
+    const std::vector<Rgb> emitted = settings.final_gather.enabled ? elements.emission : std::vector<Rgb>();
     start = Clock::now();
     if (!settings.lights.empty()) {
         const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, progress);
@@ -64,6 +69,16 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     start = Clock::now();
     result.colors = interpolate_corners(elements, result.solve.radiance, input.material, settings.hard_edge_angle);
     result.seconds_interpolate = seconds_since(start);
+
+    if (settings.final_gather.enabled) {
+        start = Clock::now();
+        const detail::GatherCounts counts =
+            detail::final_gather(elements, emitted, settings.lights, settings.final_gather,
+                                 input.material, settings.hard_edge_angle, result.colors, progress);
+        result.gathered_points = counts.gathered;
+        result.buried_points = counts.buried;
+        result.seconds_gather = seconds_since(start);
+    }
     return result;
 }
 

@@ -3,6 +3,7 @@
 /// and splits elements into four on demand.
 #include "hr_tree.h"
 
+#include "stratified.h"
 #include "weld.h"
 
 #include <glm/geometric.hpp>
@@ -51,20 +52,8 @@ int element_samples(const Tree& tree, const Node& n, std::array<Vec3, 4>& points
 
 void jittered_points(const Tree& tree, const Node& n, int grid, uint32_t seed, Vec3* points) {
     std::array<Vec3, 4> c;
-    const bool triangle = element_corners(tree, n, c) == 3;
-    for (int i = 0; i < grid * grid; ++i) {
-        seed = seed * 1664525U + 1013904223U;
-        const float ju = float(seed >> 8) / 16777216.0f;
-        seed = seed * 1664525U + 1013904223U;
-        const float jv = float(seed >> 8) / 16777216.0f;
-        const float u = (float(i % grid) + ju) / grid, v = (float(i / grid) + jv) / grid;
-        if (triangle) {
-            const float su = std::sqrt(u);
-            points[i] = (1.0f - su) * c[0] + su * (1.0f - v) * c[1] + su * v * c[2];
-        } else {
-            points[i] = (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
-        }
-    }
+    const int count = element_corners(tree, n, c);
+    detail::stratified_points(c.data(), count, grid, seed, points);
 }
 
 int element_probes(const Tree& tree, const Node& n, std::array<Vec3, 5>& points) {

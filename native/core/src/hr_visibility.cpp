@@ -72,4 +72,30 @@ bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
     return !occluded(from, direction, std::max(gap_, 1e-6f), 2.0f * scene_size_ + 1.0f);
 }
 
+Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit query{};
+    query.ray.org_x = from.x;
+    query.ray.org_y = from.y;
+    query.ray.org_z = from.z;
+    query.ray.dir_x = direction.x;
+    query.ray.dir_y = direction.y;
+    query.ray.dir_z = direction.z;
+    query.ray.tnear = t_near;
+    query.ray.tfar = 2.0f * scene_size_ + 1.0f;
+    query.ray.mask = 0xFFFFFFFFu;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &query);
+    Hit hit;
+    if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        hit.patch = static_cast<int32_t>(query.hit.primID);
+        hit.distance = query.ray.tfar;
+        hit.u = query.hit.u;
+        hit.v = query.hit.v;
+    }
+    return hit;
+}
+
 }  // namespace radiosity::hr

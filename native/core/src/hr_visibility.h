@@ -28,6 +28,19 @@ public:
     /// True when nothing lies along `direction` (unit) from `from` out of the scene.
     bool clear_towards(const Vec3& from, const Vec3& direction) const;
 
+    /// The first patch along `direction` (unit) from `from`, beyond `t_near`: its index (-1 for
+    /// none), distance and Embree's (u, v) on it: the point is corner 0 + u (1 - 0) + v (3 - 0)
+    /// on a quad's first triangle, mirrored on its second (u, v in [0, 1] over the quad); on a
+    /// triangle, corner 0 + u (1 - 0) + v (2 - 0). Thread-safe.
+    struct Hit {
+        int32_t patch = -1;
+        float distance = 0.0f;
+        float u = 0.0f, v = 0.0f;
+    };
+    Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
+    /// The gap left at a segment's ends (1e-6 of the scene size).
+    float gap() const { return gap_; }
+
 private:
     bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
 

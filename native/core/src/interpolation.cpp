@@ -386,4 +386,36 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
     return colors;
 }
 
+void replace_corners(const Elements& elements, const int32_t* material, float hard_edge_angle,
+                     const std::vector<Rgb>& slot_value, const std::vector<uint8_t>& known, CornerColors& colors) {
+    const Slots slots(elements, material, hard_edge_angle);
+    const std::size_t n = elements.size();
+    colors.element_corner.resize(4 * n, Rgb(0.0));
+    // An emitter's back side has no slot set and is not written (Slots::written_corners).
+    for (std::size_t e = 0; e < n; ++e)
+        for (int k = 0; k < slots.written_corners(e); ++k) {
+            const int32_t s = Slots::slot(e, k);
+            if (!known[s]) continue;
+            Rgb sum(0.0);
+            int count = 0;
+            // Coplanar neighbours keep their own values: on a flat surface the light at a vertex
+            // differs between faces only where it is discontinuous (a block's corner on a floor).
+            for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t)
+                if (known[*t] && (*t == s || elements.corners[Slots::element_of(*t)][Slots::corner_of(*t)] == elements.corners[e][k] ||
+                                  glm::dot(elements.normal[Slots::element_of(*t)], elements.normal[e]) < 1.0f - 1e-5f)) {
+                    sum += slot_value[*t];
+                    ++count;
+                }
+            colors.element_corner[s] = glm::max(sum / double(count), Rgb(0.0));  // s is in its own set
+        }
+    colors.input_corner.resize(elements.corner_vertex.size(), Rgb(0.0));
+    std::vector<int32_t> vertex_slot(elements.vertices.size(), -1);
+    for (std::size_t e = 0; e < n; ++e)
+        for (int k = 0; k < slots.written_corners(e); ++k) vertex_slot[elements.corners[e][k]] = Slots::slot(e, k);
+    for (std::size_t c = 0; c < elements.corner_vertex.size(); ++c) {
+        const int32_t v = elements.corner_vertex[c];
+        if (v >= 0 && vertex_slot[v] >= 0 && known[vertex_slot[v]]) colors.input_corner[c] = colors.element_corner[vertex_slot[v]];
+    }
+}
+
 }  // namespace radiosity

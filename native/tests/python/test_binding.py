@@ -65,6 +65,16 @@ class FurnaceTest(unittest.TestCase):
         np.testing.assert_allclose(result["corner_radiance"], expected, rtol=1e-4)
         self.assertTrue(result["converged"])
 
+    def test_final_gather_meets_the_furnace_at_every_corner(self):
+        rho, emitted = 0.6, 2.0
+        result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
+                            tolerance=1e-7, final_gather=True, gather_rays=64, gather_shadow_rays=16)
+        np.testing.assert_allclose(result["corner_radiance"], emitted / (1.0 - rho), rtol=1e-4)
+        self.assertEqual(result["final_gather"], {"points": 24, "buried": 0})
+        self.assertNotIn("final_gather", _core.bake(*box_arrays(), element_size=0.5, resolution=16))
+        with self.assertRaisesRegex(ValueError, "gather_rays"):
+            _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_rays=0)
+
     def test_every_method_agrees(self):
         arrays = box_arrays(rho=0.5, emitted=1.0)
         for method in ("gauss_seidel", "jacobi", "progressive"):
@@ -89,7 +99,8 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_corner_radiance"].shape, (elements, 4, 3))
         self.assertEqual(result["element_polygon"].shape, (elements,))
         self.assertAlmostEqual(float(fronts(result, "element_area").sum()), 6.0, places=5)
-        self.assertEqual(set(result["seconds"]), {"elements", "lights", "form_factors", "solve", "interpolate"})
+        self.assertEqual(set(result["seconds"]),
+                         {"elements", "lights", "form_factors", "solve", "interpolate", "gather"})
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()

@@ -17,6 +17,20 @@
 
 namespace radiosity {
 
+/// A final gather at the output corners (off by default): each input corner's radiance is computed
+/// at the corner itself, L(x) = L_e(x) + rho(x) [direct(x) + indirect(x)], instead of
+/// interpolated from the elements around it (see final_gather.h).
+///  - direct: every emitting element's exact unoccluded point-to-polygon factor times the share
+///    of it that stratified shadow rays find unhidden, plus the point, spot and sun lamps at x;
+///  - indirect: stratified cosine-weighted rays into the solved element radiances, each hit
+///    counting its radiance less its own emission (which direct has counted).
+/// Deterministic: the same bake twice gives bit-identical colours.
+struct FinalGatherSettings {
+    bool enabled = false;
+    int rays = 1024;         ///< indirect rays per corner (rounded up to a square grid)
+    int shadow_rays = 64;    ///< shadow rays per corner, shared by the emitting elements it sees (at least 1 each)
+};
+
 struct BakeSettings {
     float element_size = 0.0f;       ///< max element edge in metres, 0 = one element per polygon
     int resolution = 128;            ///< hemi-cube cells per full face edge
@@ -34,6 +48,8 @@ struct BakeSettings {
     /// Point, spot and sun lamps, shot once before the solve: each element's reflected direct
     /// light rho E / pi joins its emitted radiance.
     Lights lights;
+    /// The final gather at the output corners (off by default).
+    FinalGatherSettings final_gather;
 };
 
 struct BakeResult {
@@ -44,6 +60,9 @@ struct BakeResult {
     std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
     std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
     double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
+    double seconds_gather = 0;          ///< the final gather (0 when off)
+    std::size_t gathered_points = 0;    ///< output vertices whose colour the final gather computed
+    std::size_t buried_points = 0;      ///< output vertices inside other geometry: interpolated colour kept
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at

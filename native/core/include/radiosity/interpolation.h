@@ -29,4 +29,14 @@ CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb
                                  const int32_t* material, float hard_edge_angle,
                                  const std::vector<Rgb>* corner_light = nullptr);
 
+/// Replaces the colours of the slots (4 per element, as `corner_light`) marked in `known`, and the
+/// input corners on them, by `slot_value` (clamped at zero): the final gather's values in place
+/// of interpolated ones. Where a slot's compatible set (the elements that share its colour) bends,
+/// its value is the mean over the known slots of the set that are not coplanar with it, so a
+/// curved smooth surface's corners keep one value; coplanar faces keep their own (on a flat
+/// surface the light at a vertex differs between faces only where it is discontinuous, as at a
+/// block's corner standing on a floor).
+void replace_corners(const Elements& elements, const int32_t* material, float hard_edge_angle,
+                     const std::vector<Rgb>& slot_value, const std::vector<uint8_t>& known, CornerColors& colors);
+
 }  // namespace radiosity
