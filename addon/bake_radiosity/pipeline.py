@@ -15,6 +15,7 @@ from .errors import BakeError
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
                  "memory_budget", "hard_edge_angle", "attribute_name", "target", "separate_linked_duplicates",
+                 "final_gather",
                  "zone_size", "media_folder")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
@@ -159,7 +160,7 @@ class BakeJob:
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
             "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,
-            "resolution_reason": c.resolution_reason, "near_field": c.near_field,
+            "resolution_reason": c.resolution_reason, "near_field": c.near_field, "gather_rays": c.gather_rays,
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
             "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
             "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
@@ -171,8 +172,8 @@ class BakeJob:
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
             "warnings": list(self.warnings),
-            "seconds": {"export": self.seconds_export, "form_factors": r["seconds"]["form_factors"],
-                        "solve": r["seconds"]["solve"], "writeback": seconds_writeback},
+            # Every phase, so that their sum is the whole bake's time.
+            "seconds": {"export": self.seconds_export, **r["seconds"], "writeback": seconds_writeback},
         }
         scene.radiosity.last_report = report_line(summary)
         scene.radiosity.last_accuracy = accuracy_line(summary)
@@ -202,8 +203,9 @@ def report_line(summary):
     if hierarchy:
         zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
             hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
-    return "%d elements%s, %s, %d iterations, residual %.2g (%s), %.1f s" % (
-        summary["elements"], zones, METHOD_LABELS[summary["method"]], summary["iterations"],
+    gather = ", final gather (%d rays a corner)" % summary["gather_rays"] if summary.get("gather_rays") else ""
+    return "%d elements%s, %s%s, %d iterations, residual %.2g (%s), %.1f s" % (
+        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, summary["iterations"],
         summary["residual"], state, seconds)
 
 
@@ -215,8 +217,10 @@ def accuracy_line(summary):
         "Residual %.1e" % summary["residual"],
         "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
             power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
-        "Error typically %s %.1f%% (element size, measured on the Cornell box) + at most %.2g%% (solve)" % (
-            error["discretisation_relation"], 100 * error["discretisation"], 100 * error["solve_bound"]),
+        "Error typically %s %.1f%% (%s, measured on the Cornell box) + at most %.2g%% (solve)" % (
+            error["discretisation_relation"], 100 * error["discretisation"],
+            "element size and final gather, against Cycles" if summary.get("gather_rays") else "element size",
+            100 * error["solve_bound"]),
         "Hemi-cube resolution %d%s%s: %s" % (
             summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
             if summary["hemicube_rotations"] > 1 else "", ", near field" if summary["near_field"] else "",

@@ -57,6 +57,7 @@ def draw_panel(layout, context):
         column.label(text="Elements 1/%d of the scene, resolution from the scene (%g cells)%s, tolerance %g, "
                           "refinement %g" % (preset.divisions, preset.cells, near_field,
                                              preset.tolerance, preset.refine_tolerance))
+    column.prop(settings, "final_gather")
     column.prop(settings, "memory_budget", text="Memory Budget (MB)")
     column.prop(settings, "hard_edge_angle")
     column.separator()
