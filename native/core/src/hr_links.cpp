@@ -375,9 +375,13 @@ void Refiner::link(const Pending& pair, double threshold, Output& out, std::vect
     --links_;  // the pair held a place in links_ while it waited
     const Estimate e = estimate(receiver, source);
     rays += e.rays;
-    if (!e.useful) return;
     const Node& r = tree_.nodes[receiver];
     const Node& s = tree_.nodes[source];
+    // A factor that is not a number would spread through every sweep: an error here, naming the
+    // receiver's polygon (or the source's, for a cluster receiver).
+    if (!std::isfinite(e.link.factor) || std::isnan(e.link.uncertainty))
+        throw NumericalError("links", r.is_element() ? input_polygon(tree_, r) : input_polygon(tree_, s));
+    if (!e.useful) return;
     // Pairs too close for their estimate split whatever the threshold (even before the first
     // solve, when every source but the lamps and emitters is still dark).
     const bool too_near = is_must_split(e.link);
