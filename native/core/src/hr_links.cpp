@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -93,6 +94,45 @@ constexpr std::size_t kLinksPerReport = std::size_t(1) << 20;
 
 }  // namespace
 
+/// Rays per cluster for its openness: its binomial doubt is at most 1 / (2 sqrt(64)) = 6%.
+constexpr int kOpennessRays = 64;
+
+Refiner::Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes)
+    : tree_(tree), visibility_(visibility), max_bytes_(max_bytes), openness_(tree.cluster_count, 1.0f) {
+    const auto patches = static_cast<int32_t>(tree_.patch_count);
+    tbb::parallel_for(std::size_t(0), tree_.cluster_count, [&](std::size_t k) {
+        const Node& c = tree_.nodes[tree_.patch_count + k];
+        uint32_t seed = pair_seed(c, c);
+        int open = 0;
+        for (int ray = 0; ray < kOpennessRays; ++ray) {
+            // A patch picked by area (as cluster_samples walks), a point on it, a cos-weighted
+            // direction out of its front, and the ray to where it leaves the cluster's sphere.
+            int32_t n = patches + int32_t(k);
+            for (seed = mix(seed + 0x9e3779b9U); n >= patches; seed = mix(seed)) {
+                const ClusterSplit& split = tree_.splits[n - patches];
+                n = split.child[seed / 4294967296.0 < split.area_share ? 0 : 1];
+            }
+            const Node& patch = tree_.nodes[n];
+            Vec3 from;
+            jittered_points(tree_, patch, 1, seed, &from);
+            seed = mix(seed);
+            const float u1 = float(seed >> 8) / 16777216.0f;
+            seed = mix(seed);
+            const float phi = 2.0f * float(M_PI) * float(seed >> 8) / 16777216.0f;
+            const Vec3 normal = patch.normal;
+            const Vec3 t = glm::normalize(glm::cross(std::abs(normal.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0), normal));
+            const Vec3 b = glm::cross(normal, t);
+            const float radial = std::sqrt(u1);
+            const Vec3 direction = radial * std::cos(phi) * t + radial * std::sin(phi) * b + std::sqrt(1.0f - u1) * normal;
+            const glm::dvec3 m(from - c.centre), d(direction);
+            const double half = glm::dot(m, d), rest = glm::dot(m, m) - double(c.radius) * c.radius;
+            const double length = -half + std::sqrt(std::max(0.0, half * half - rest));
+            open += !(length > 0.0) || visibility_.clear(from, from + float(length) * direction);
+        }
+        openness_[k] = float(open) / kOpennessRays;
+    });
+}
+
 Refiner::Estimate Refiner::must_split(bool source_side) {
     Estimate e;
     e.useful = true;
@@ -153,6 +193,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     glm::dvec3 polygon[4];
     for (int k = 0; k < nc; ++k) polygon[k] = C[k];
     auto factor_at = [&](const Vec3& x) {
+        if (in_plane_of(tree_, s, x)) return 0.0;
         return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
     };
     Samples F;  // over r's Gauss points
@@ -321,8 +362,10 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     if (distance < 2.0 * (r_extent + s_extent)) return must_split(s_extent >= r_extent && s_extent > 0.0);
     const Variation v = probe_count && tree_.can_split(r) ? variation(at.data(), probe_count) : Variation{};
     e.link.steps = static_cast<float>(max_channel(r.reflectance) * (v.spread - v.nonlinear));
-    const double receiver_part = v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0));
-    const double source_part = g.mean() * 2.0 * s_extent / distance;
+    // A cluster end that is not open (Refiner::openness) makes light from nothing in that share.
+    const double receiver_part =
+        v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0) + (1.0 - openness(r)));
+    const double source_part = g.mean() * (2.0 * s_extent / distance + (1.0 - openness(s)));
     e.source_side = source_part > receiver_part;
     e.link.factor = static_cast<float>(g.mean() * visible);
     e.link.uncertainty = static_cast<float>(max_channel(r.reflectance) * (receiver_part + source_part));

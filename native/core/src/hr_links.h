@@ -20,8 +20,8 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u);
 class Refiner {
 public:
     /// `max_bytes`: the nodes and links may take this many bytes; pairs stop splitting beyond (0: no cap).
-    Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes = 0)
-        : tree_(tree), visibility_(visibility), max_bytes_(max_bytes) {}
+    /// Measures each cluster's openness (openness()) first: some rays per cluster.
+    Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes = 0);
 
     /// The first links: every pair of sibling subtrees and every lamp with the root, at the
     /// coarsest level (sources are dark before the first solve, so nothing asks for more).
@@ -36,6 +36,15 @@ public:
     std::size_t bytes() const;
     /// Whether a pair stayed whole because the nodes and links reached `max_bytes`.
     bool memory_cap_reached() const { return memory_cap_reached_; }
+    /// The share of cluster `c`'s surface (by area) from which light leaves its bounding sphere
+    /// without meeting anything on the way: rays from random points of its patches, cos-weighted.
+    /// A cluster is a link's end as a whole, as if every part of it saw what lies outside: it
+    /// emits all its light outwards (also what its parts send each other, which its own links
+    /// carry too) and every part reads what it receives (also the floor under a block standing
+    /// on it, and faces pressed against each other). What is not open is the light such a link
+    /// would make from nothing: a doubt of the link (estimate_point_source), which refinement
+    /// removes by linking the cluster's parts where that light matters.
+    float openness(const Node& c) const { return c.kind == Kind::Cluster ? openness_[c.cluster] : 1.0f; }
 
 private:
     struct Estimate {
@@ -96,6 +105,7 @@ private:
     bool within_memory();
 
     std::vector<uint8_t> split_;
+    std::vector<float> openness_;  ///< per cluster (Node::cluster)
     std::size_t rays_ = 0;
     std::size_t max_bytes_ = 0;
     std::atomic<std::size_t> links_{0};  ///< links made, plus pairs waiting (each may become one)

@@ -79,7 +79,8 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     : lights(lights_in), min_element_size_(min_element_size), max_leaves_(max_leaves) {
     const Elements& e = build.elements;
     std::size_t welded = 0;
-    patch_vertex = detail::weld_points(e.vertices, detail::weld_tolerance(e.vertices), welded);
+    weld_tolerance = detail::weld_tolerance(e.vertices);
+    patch_vertex = detail::weld_points(e.vertices, weld_tolerance, welded);
     vertices.grow_by(welded);
     for (std::size_t v = 0; v < e.vertices.size(); ++v) vertices[patch_vertex[v]] = e.vertices[v];
 

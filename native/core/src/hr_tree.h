@@ -180,6 +180,9 @@ public:
     std::vector<Vec3> patch_centres;        ///< per patch: Node::centre, where those walks end
     std::vector<int32_t> patch_polygon;     ///< per patch: its input polygon (Elements::polygon)
     float scene_size = 0.0f;                ///< bounding box diagonal, metres
+    /// Points closer than this are one vertex (detail::weld_tolerance), and a point closer than
+    /// this to a plane lies in it (in_plane_of).
+    float weld_tolerance = 0.0f;
 
     /// Splits element `e` into four (once; safe to call from several threads). Returns false when
     /// it is too small to split (its children's longest edges would be below `finest`, by default
@@ -219,6 +222,15 @@ private:
 /// The input polygon node `n` lies on (-1 for clusters and lamps): what an error names.
 inline int32_t input_polygon(const Tree& tree, const Node& n) {
     return n.is_element() && n.patch >= 0 ? tree.patch_polygon[n.patch] : -1;
+}
+
+/// Whether `x` lies in element `source`'s plane, within the weld tolerance: a point of a face
+/// touching it (back to back, or face to face in contact). Round-off alone puts such a point a
+/// hair in front of the plane or behind it, and a polygon a hair in front covers the point's
+/// whole hemisphere: its factor would be 0 or 1 by chance (an emitter's unlit back gathered
+/// three quarters of its light; two blocks side by side lit each other's buried faces).
+inline bool in_plane_of(const Tree& tree, const Node& source, const Vec3& x) {
+    return std::abs(glm::dot(source.normal, x - tree.vertices[source.corners[0]])) <= tree.weld_tolerance;
 }
 
 /// Sample points of an element for the factor and visibility estimates: 2 x 2 Gauss-Legendre
