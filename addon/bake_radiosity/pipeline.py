@@ -132,7 +132,7 @@ class BakeJob:
         seconds_writeback = time.perf_counter() - start
         r, c = self.result, self.choice
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
-        error = error_estimate.estimate(r)
+        error = error_estimate.estimate(r, power)
         summary = {
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
