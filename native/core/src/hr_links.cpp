@@ -96,6 +96,8 @@ constexpr std::size_t kLinksPerReport = std::size_t(1) << 20;
 
 /// Rays per cluster for its openness: its binomial doubt is at most 1 / (2 sqrt(64)) = 6%.
 constexpr int kOpennessRays = 64;
+/// Clusters less open than this are never a link's end (estimate_point_source).
+constexpr float kOpenEnough = 0.9f;
 
 Refiner::Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes)
     : tree_(tree), visibility_(visibility), max_bytes_(max_bytes), openness_(tree.cluster_count, 1.0f) {
@@ -324,6 +326,12 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
         return may_reach ? must_split(s.kind == Kind::Cluster) : e;
     }
 
+    // A cluster end whose parts hide a tenth of it or more from what lies outside (blocks on a
+    // floor) is no point source nor an ambient cube: its parts are linked instead. Measured on a
+    // closed 2 m room with 200 blocks on its floor: 100.8% of the emitted light absorbed with the
+    // doubt below alone (refinement ran out of rounds), 99.97% with this, and fewer links.
+    if (openness(r) < kOpenEnough) return must_split(false);
+    if (openness(s) < kOpenEnough) return must_split(true);
     // Coarse element receivers get rays from jittered points: 16, or for a lamp one per cell of
     // about 4 minimum element sizes (up to 16 x 16), since its light may be even over the whole
     // receiver and nothing but these rays would find a small shadow on it.
