@@ -46,7 +46,7 @@ public:
 
     double at(const Vec3& x) const {
         if (corner_count_ > 0)
-            return in_plane_of(tree_, source_, x) ? 0.0 : point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
+            return in_plane_of(tree_, source_, x, normal_) ? 0.0 : point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
                                     glm::dvec3(source_.normal));
         const Vec3 d = source_.centre - x;
         if (source_.is_element()) return pair_kernel(normal_, source_.normal, d);

@@ -195,7 +195,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     glm::dvec3 polygon[4];
     for (int k = 0; k < nc; ++k) polygon[k] = C[k];
     auto factor_at = [&](const Vec3& x) {
-        if (in_plane_of(tree_, s, x)) return 0.0;
+        if (in_plane_of(tree_, s, x, r.normal)) return 0.0;
         return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
     };
     Samples F;  // over r's Gauss points

@@ -224,13 +224,15 @@ inline int32_t input_polygon(const Tree& tree, const Node& n) {
     return n.is_element() && n.patch >= 0 ? tree.patch_polygon[n.patch] : -1;
 }
 
-/// Whether `x` lies in element `source`'s plane, within the weld tolerance: a point of a face
-/// touching it (back to back, or face to face in contact). Round-off alone puts such a point a
-/// hair in front of the plane or behind it, and a polygon a hair in front covers the point's
-/// whole hemisphere: its factor would be 0 or 1 by chance (an emitter's unlit back gathered
-/// three quarters of its light; two blocks side by side lit each other's buried faces).
-inline bool in_plane_of(const Tree& tree, const Node& source, const Vec3& x) {
-    return std::abs(glm::dot(source.normal, x - tree.vertices[source.corners[0]])) <= tree.weld_tolerance;
+/// Whether a point `x` of a face with unit normal `normal` lies in element `source`'s plane, that
+/// face parallel to it (back to back, or face to face in contact), within the weld tolerance.
+/// Round-off alone puts such a point a hair in front of the plane or behind it, and a polygon a
+/// hair in front covers the point's whole hemisphere: its factor would be 0 or 1 by chance (an
+/// emitter's unlit back gathered three quarters of its light). Faces across an edge from the
+/// source (a wall beside a floor) are not parallel to it: a point at their common edge sees it.
+inline bool in_plane_of(const Tree& tree, const Node& source, const Vec3& x, const Vec3& normal) {
+    return std::abs(glm::dot(source.normal, normal)) > 0.999f &&
+           std::abs(glm::dot(source.normal, x - tree.vertices[source.corners[0]])) <= tree.weld_tolerance;
 }
 
 /// Sample points of an element for the factor and visibility estimates: 2 x 2 Gauss-Legendre
