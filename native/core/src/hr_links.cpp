@@ -9,7 +9,6 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -99,10 +98,11 @@ constexpr int kOpennessRays = 64;
 /// Clusters less open than this are never a link's end (estimate_point_source).
 constexpr float kOpenEnough = 0.9f;
 
-Refiner::Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes)
-    : tree_(tree), visibility_(visibility), max_bytes_(max_bytes), openness_(tree.cluster_count, 1.0f) {
+void Refiner::measure_openness(const ProgressFn& progress) {
+    openness_.assign(tree_.cluster_count, 1.0f);
     const auto patches = static_cast<int32_t>(tree_.patch_count);
-    tbb::parallel_for(std::size_t(0), tree_.cluster_count, [&](std::size_t k) {
+    // Phase "links", with progress and cancel: at 10^6 patches these are 6.4e7 rays.
+    detail::parallel_rows("links", tree_.cluster_count, 64, 0, progress, [&](std::size_t k) {
         const Node& c = tree_.nodes[tree_.patch_count + k];
         uint32_t seed = pair_seed(c, c);
         int open = 0;
@@ -132,6 +132,7 @@ Refiner::Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes
             open += !(length > 0.0) || visibility_.clear(from, from + float(length) * direction);
         }
         openness_[k] = float(open) / kOpennessRays;
+        return true;
     });
 }
 
@@ -533,6 +534,7 @@ bool Refiner::split_at_start(int32_t node) const {
 }
 
 void Refiner::link_initial(const ProgressFn& progress) {
+    measure_openness(progress);
     take_split_snapshot();
     // Every cluster's two children see each other; together these pairs cover every pair of
     // patches once in each direction. Lamps light the whole scene through the root.

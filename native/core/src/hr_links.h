@@ -20,11 +20,12 @@ Rgb intensity(const Tree& tree, const Node& source, const Vec3& u);
 class Refiner {
 public:
     /// `max_bytes`: the nodes and links may take this many bytes; pairs stop splitting beyond (0: no cap).
-    /// Measures each cluster's openness (openness()) first: some rays per cluster.
-    Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes = 0);
+    Refiner(Tree& tree, const Visibility& visibility, std::size_t max_bytes = 0)
+        : tree_(tree), visibility_(visibility), max_bytes_(max_bytes) {}
 
     /// The first links: every pair of sibling subtrees and every lamp with the root, at the
     /// coarsest level (sources are dark before the first solve, so nothing asks for more).
+    /// Measures each cluster's openness (openness()) first: 64 rays per cluster.
     void link_initial(const ProgressFn& progress);
     /// Replaces every link whose error now exceeds `threshold` (radiance) by links between
     /// children, as deep as the estimates ask. Returns how many links were refined.
@@ -97,6 +98,7 @@ private:
     /// Which nodes had children when the pass began. Decisions read this, not the live tree,
     /// which other threads split meanwhile: the same scene refines the same way every run.
     void take_split_snapshot();
+    void measure_openness(const ProgressFn& progress);
     bool split_at_start(int32_t node) const;
 
     Tree& tree_;
