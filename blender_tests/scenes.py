@@ -252,3 +252,44 @@ def camera_looking_along_y(location, lens):
 
 def camera_for_cornell_box():
     return camera_looking_along_y((0.5, -1.02, 0.5), 35.0)
+
+
+def cluttered_room(blocks, size=0.02):
+    """Issue 22's room: the inside of a 2 m cube (one object 'Room', rho 0.7, normals inward),
+    a 0.5 m square 1 cm under the ceiling emitting radiance 10 downwards ('Panel', black, 7.85 W),
+    and `blocks` closed 2 cm cubes (six faces each, rho 0.7) standing on the floor in one object
+    'Blocks', scattered as an artist's scatter leaves them (native/tests/test_hierarchy.cpp's
+    scatter_blocks, the same generator): some overlap, one in eight is pressed against the one
+    before (a shared face), one in sixteen stands beside it 30 um off flush (the floor's contact
+    cuts then leave a sliver thinner than the hierarchy's weld between their outlines)."""
+    white = diffuse("White", (0.7, 0.7, 0.7))
+    sides = [((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),   # floor, ceiling
+             ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),   # walls, inward
+             ((0, 2, 0), (2, 0, 0), (0, 0, 2)), ((0, 0, 0), (0, 0, 2), (2, 0, 0))]
+    mesh_object("Room", [grid(o, u, v, 1, 1) + (0,) for o, u, v in sides], [white])
+    mesh_object("Panel", [grid((0.75, 0.75, 1.99), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
+                [emission("Panel", (1.0, 1.0, 1.0), 10.0)])
+    if not blocks:
+        return
+    cube = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+            ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+            ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
+    seed, x, y, pieces = 12345, 0.0, 0.0, []
+
+    def uniform():
+        nonlocal seed
+        seed = (seed * 1664525 + 1013904223) % 2 ** 32
+        return np.float32((seed >> 8) / 16777216.0)
+
+    for b in range(blocks):
+        if b % 8 == 1:
+            x = np.float32(x + np.float32(size))
+        elif b % 16 == 2:
+            x, y = np.float32(x + np.float32(3 * size)), np.float32(y + np.float32(3e-5))
+        else:
+            x = np.float32(np.float32(0.05) + np.float32(1.9) * uniform())
+            y = np.float32(np.float32(0.05) + np.float32(1.9) * uniform())
+        corner = np.array([x, y, 0.0])
+        pieces += [grid(corner + size * np.array(o), size * np.array(u), size * np.array(v), 1, 1) + (0,)
+                   for o, u, v in cube]
+    mesh_object("Blocks", pieces, [white])

@@ -100,7 +100,13 @@ class BakeJob:
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
         with core_errors_as_bake_errors():
-            self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
+            try:
+                self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
+            except native.core().NumericalError as error:
+                # Light that is not a number is the bake's fault, never a result to write: say where.
+                raise BakeError("The bake failed: light stopped being a number in its '%s' phase at %s. Nothing "
+                                "was written; please report this scene"
+                                % (error.phase, self.polygon_name(error.polygon))) from error
         self.warnings += self._skipped_warnings()
         hierarchy = self.result.get("hierarchy")
         if hierarchy and hierarchy["leaf_cap_reached"]:
@@ -154,7 +160,7 @@ class BakeJob:
         seconds_writeback = time.perf_counter() - start
         r, c = self.result, self.choice
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
-        error = error_estimate.estimate(r)
+        error = error_estimate.estimate(r, power)
         summary = {
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
@@ -179,15 +185,21 @@ class BakeJob:
         scene.radiosity.last_accuracy = accuracy_line(summary)
         return summary
 
+    def polygon_name(self, polygon):
+        """'<object> face <n>' for an exported polygon index ('a lamp' for lamp polygons, 'no one face' for -1)."""
+        if polygon < 0:
+            return "no one face"
+        part = next((p for p in self.exported.parts if p.polygon_start <= polygon < p.polygon_stop), None)
+        return "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "a lamp"
+
     def _skipped_warnings(self):
         skipped = self.result["skipped"]
         if not skipped:
             return []
         names = []
         for polygon, reason in skipped[:5]:
-            part = next((p for p in self.exported.parts if p.polygon_start <= polygon < p.polygon_stop), None)
-            where = "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "lamp"
-            names.append("%s (%s)" % (where, reason))
+            where = self.polygon_name(polygon)
+            names.append("%s (%s)" % ("lamp" if where == "a lamp" else where, reason))
         return ["%d face(s) skipped: %s%s" % (len(skipped), ", ".join(names), ", ..." if len(skipped) > 5 else "")]
 
 

@@ -73,7 +73,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     if (settings.final_gather.enabled) {
         start = Clock::now();
         const detail::GatherCounts counts =
-            detail::final_gather(elements, emitted, settings.lights, settings.final_gather,
+            detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.final_gather,
                                  input.material, settings.hard_edge_angle, result.colors, progress);
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;

@@ -14,7 +14,8 @@
 ///    lamps' first reflection, which the solve folds into the elements' emission, is indirect
 ///    light and is counted). The solved radiance there is the element's interpolated corner
 ///    colours blended at the hit point (smooth next to seams, where the flat element value is
-///    not). Misses and back faces bring nothing (as in the hemi-cube).
+///    not); on an emitter's back side, which has no corner colours, its solved value. Misses and
+///    back faces bring nothing (as in the hemi-cube).
 /// The point x is the corner's element vertex moved a hair into its element (towards the
 /// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
 /// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
@@ -45,9 +46,11 @@ struct GatherCounts {
 
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
 /// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
-/// each element's own emission (without the lamps' first reflection). Progress phase "gather",
+/// each element's own emission (without the lamps' first reflection), `radiance` the solved one
+/// (read flat on emitters' back sides, which have no corner colours). Progress phase "gather",
 /// one unit per output vertex; throws Cancelled.
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const Lights& lights,
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
+                          const std::vector<Rgb>& radiance, const Lights& lights,
                           const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
                           CornerColors& colors, const ProgressFn& progress);
 

@@ -35,6 +35,21 @@ void free_links(hr::Tree& tree, Drop drop) {
 #endif
 }
 
+bool finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
+/// Throws NumericalError for the output stage if any element's radiance or corner colour is not
+/// finite, naming the input polygon of the first such element.
+void check_output(const HierarchyResult& result) {
+    const Elements& out = result.output;
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        bool ok = finite(result.output_radiance[e]);
+        for (int k = 0; k < 4 && ok; ++k) ok = finite(result.colors.element_corner[4 * e + k]);
+        if (!ok) throw NumericalError("output", out.polygon[e]);
+    }
+    for (const Rgb& c : result.colors.input_corner)
+        if (!finite(c)) throw NumericalError("output", -1);
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -86,6 +101,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
         result.stats.iterations += sweep.sweeps;
         result.residual = sweep.residual;
         result.converged = sweep.converged;
+        if (!sweep.finite)
+            throw NumericalError("solve", sweep.bad_node >= 0 ? hr::input_polygon(tree, tree.nodes[sweep.bad_node]) : -1);
         ++round;
         if (round >= settings.max_rounds || refiner.memory_cap_reached()) break;  // capped: nothing may split
         const double scale = hr::reference_radiance(tree);
@@ -120,6 +137,7 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     free_links(tree, [](std::size_t) { return true; });
     result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
     result.seconds_interpolate = seconds_since(start);
+    check_output(result);
 
     HierarchyStats& stats = result.stats;
     stats.patches = patches.size();

@@ -31,7 +31,8 @@ std::vector<LeafRange> leaf_ranges(const std::vector<int32_t>& leaf) {
 /// contour integral). Farther ones: cos cos / r^2 from their centre; clusters: cos / r^2.
 class Shape {
 public:
-    Shape(const Tree& tree, const Node& receiver, const Node& source) : source_(source), normal_(receiver.normal) {
+    Shape(const Tree& tree, const Node& receiver, const Node& source)
+        : tree_(tree), source_(source), normal_(receiver.normal) {
         const float distance = glm::length(source.centre - receiver.centre);
         if (source.is_element() && source.radius > 0.1f * distance) {
             std::array<Vec3, 4> c;
@@ -45,7 +46,7 @@ public:
 
     double at(const Vec3& x) const {
         if (corner_count_ > 0)
-            return point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
+            return in_plane_of(tree_, source_, x, normal_) ? 0.0 : point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
                                     glm::dvec3(source_.normal));
         const Vec3 d = source_.centre - x;
         if (source_.is_element()) return pair_kernel(normal_, source_.normal, d);
@@ -54,6 +55,7 @@ public:
     }
 
 private:
+    const Tree& tree_;
     const Node& source_;
     Vec3 normal_;
     glm::dvec3 polygon_[4];

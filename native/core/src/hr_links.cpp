@@ -93,6 +93,49 @@ constexpr std::size_t kLinksPerReport = std::size_t(1) << 20;
 
 }  // namespace
 
+/// Rays per cluster for its openness: its binomial doubt is at most 1 / (2 sqrt(64)) = 6%.
+constexpr int kOpennessRays = 64;
+/// Clusters less open than this are never a link's end (estimate_point_source).
+constexpr float kOpenEnough = 0.9f;
+
+void Refiner::measure_openness(const ProgressFn& progress) {
+    openness_.assign(tree_.cluster_count, 1.0f);
+    const auto patches = static_cast<int32_t>(tree_.patch_count);
+    // Phase "links", with progress and cancel: at 10^6 patches these are 6.4e7 rays.
+    detail::parallel_rows("links", tree_.cluster_count, 64, 0, progress, [&](std::size_t k) {
+        const Node& c = tree_.nodes[tree_.patch_count + k];
+        uint32_t seed = pair_seed(c, c);
+        int open = 0;
+        for (int ray = 0; ray < kOpennessRays; ++ray) {
+            // A patch picked by area (as cluster_samples walks), a point on it, a cos-weighted
+            // direction out of its front, and the ray to where it leaves the cluster's sphere.
+            int32_t n = patches + int32_t(k);
+            for (seed = mix(seed + 0x9e3779b9U); n >= patches; seed = mix(seed)) {
+                const ClusterSplit& split = tree_.splits[n - patches];
+                n = split.child[seed / 4294967296.0 < split.area_share ? 0 : 1];
+            }
+            const Node& patch = tree_.nodes[n];
+            Vec3 from;
+            jittered_points(tree_, patch, 1, seed, &from);
+            seed = mix(seed);
+            const float u1 = float(seed >> 8) / 16777216.0f;
+            seed = mix(seed);
+            const float phi = 2.0f * float(M_PI) * float(seed >> 8) / 16777216.0f;
+            const Vec3 normal = patch.normal;
+            const Vec3 t = glm::normalize(glm::cross(std::abs(normal.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0), normal));
+            const Vec3 b = glm::cross(normal, t);
+            const float radial = std::sqrt(u1);
+            const Vec3 direction = radial * std::cos(phi) * t + radial * std::sin(phi) * b + std::sqrt(1.0f - u1) * normal;
+            const glm::dvec3 m(from - c.centre), d(direction);
+            const double half = glm::dot(m, d), rest = glm::dot(m, m) - double(c.radius) * c.radius;
+            const double length = -half + std::sqrt(std::max(0.0, half * half - rest));
+            open += !(length > 0.0) || visibility_.clear(from, from + float(length) * direction);
+        }
+        openness_[k] = float(open) / kOpennessRays;
+        return true;
+    });
+}
+
 Refiner::Estimate Refiner::must_split(bool source_side) {
     Estimate e;
     e.useful = true;
@@ -158,7 +201,7 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     // light each other fully.
     const float in_plane = 1e-6f * tree_.scene_size;
     auto factor_at = [&](const Vec3& x) {
-        if (!(glm::dot(s.normal, x - s.centre) > in_plane)) return 0.0;
+        if (!(glm::dot(s.normal, x - s.centre) > in_plane) || in_plane_of(tree_, s, x, r.normal)) return 0.0;
         return point_to_polygon(glm::dvec3(x), glm::dvec3(r.normal), polygon, nc, glm::dvec3(s.normal));
     };
     Samples F;  // over r's Gauss points
@@ -289,6 +332,12 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
         return may_reach ? must_split(s.kind == Kind::Cluster) : e;
     }
 
+    // A cluster end whose parts hide a tenth of it or more from what lies outside (blocks on a
+    // floor) is no point source nor an ambient cube: its parts are linked instead. Measured on a
+    // closed 2 m room with 200 blocks on its floor: 100.8% of the emitted light absorbed with the
+    // doubt below alone (refinement ran out of rounds), 99.97% with this, and fewer links.
+    if (openness(r) < kOpenEnough) return must_split(false);
+    if (openness(s) < kOpenEnough) return must_split(true);
     // Coarse element receivers get rays from jittered points: 16, or for a lamp one per cell of
     // about 4 minimum element sizes (up to 16 x 16), since its light may be even over the whole
     // receiver and nothing but these rays would find a small shadow on it.
@@ -327,8 +376,10 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     if (distance < 2.0 * (r_extent + s_extent)) return must_split(s_extent >= r_extent && s_extent > 0.0);
     const Variation v = probe_count && tree_.can_split(r) ? variation(at.data(), probe_count) : Variation{};
     e.link.steps = static_cast<float>(max_channel(r.reflectance) * (v.spread - v.nonlinear));
-    const double receiver_part = v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0));
-    const double source_part = g.mean() * 2.0 * s_extent / distance;
+    // A cluster end that is not open (Refiner::openness) makes light from nothing in that share.
+    const double receiver_part =
+        v.nonlinear + g.mean() * (2.0 * r_extent / distance + (partial ? 1.0 : 0.0) + (1.0 - openness(r)));
+    const double source_part = g.mean() * (2.0 * s_extent / distance + (1.0 - openness(s)));
     e.source_side = source_part > receiver_part;
     e.link.factor = static_cast<float>(g.mean() * visible);
     e.link.uncertainty = static_cast<float>(max_channel(r.reflectance) * (receiver_part + source_part));
@@ -381,9 +432,13 @@ void Refiner::link(const Pending& pair, double threshold, Output& out, std::vect
     --links_;  // the pair held a place in links_ while it waited
     const Estimate e = estimate(receiver, source);
     rays += e.rays;
-    if (!e.useful) return;
     const Node& r = tree_.nodes[receiver];
     const Node& s = tree_.nodes[source];
+    // A factor that is not a number would spread through every sweep: an error here, naming the
+    // receiver's polygon (or the source's, for a cluster receiver).
+    if (!std::isfinite(e.link.factor) || std::isnan(e.link.uncertainty))
+        throw NumericalError("links", r.is_element() ? input_polygon(tree_, r) : input_polygon(tree_, s));
+    if (!e.useful) return;
     // Pairs too close for their estimate split whatever the threshold (even before the first
     // solve, when every source but the lamps and emitters is still dark).
     const bool too_near = is_must_split(e.link);
@@ -484,6 +539,7 @@ bool Refiner::split_at_start(int32_t node) const {
 }
 
 void Refiner::link_initial(const ProgressFn& progress) {
+    measure_openness(progress);
     take_split_snapshot();
     // Every cluster's two children see each other; together these pairs cover every pair of
     // patches once in each direction. Lamps light the whole scene through the root.

@@ -25,6 +25,7 @@ public:
 
     /// The first links: every pair of sibling subtrees and every lamp with the root, at the
     /// coarsest level (sources are dark before the first solve, so nothing asks for more).
+    /// Measures each cluster's openness (openness()) first: 64 rays per cluster.
     void link_initial(const ProgressFn& progress);
     /// Replaces every link whose error now exceeds `threshold` (radiance) by links between
     /// children, as deep as the estimates ask. Returns how many links were refined.
@@ -36,6 +37,15 @@ public:
     std::size_t bytes() const;
     /// Whether a pair stayed whole because the nodes and links reached `max_bytes`.
     bool memory_cap_reached() const { return memory_cap_reached_; }
+    /// The share of cluster `c`'s surface (by area) from which light leaves its bounding sphere
+    /// without meeting anything on the way: rays from random points of its patches, cos-weighted.
+    /// A cluster is a link's end as a whole, as if every part of it saw what lies outside: it
+    /// emits all its light outwards (also what its parts send each other, which its own links
+    /// carry too) and every part reads what it receives (also the floor under a block standing
+    /// on it, and faces pressed against each other). What is not open is the light such a link
+    /// would make from nothing: a doubt of the link (estimate_point_source), which refinement
+    /// removes by linking the cluster's parts where that light matters.
+    float openness(const Node& c) const { return c.kind == Kind::Cluster ? openness_[c.cluster] : 1.0f; }
 
 private:
     struct Estimate {
@@ -88,6 +98,7 @@ private:
     /// Which nodes had children when the pass began. Decisions read this, not the live tree,
     /// which other threads split meanwhile: the same scene refines the same way every run.
     void take_split_snapshot();
+    void measure_openness(const ProgressFn& progress);
     bool split_at_start(int32_t node) const;
 
     Tree& tree_;
@@ -96,6 +107,7 @@ private:
     bool within_memory();
 
     std::vector<uint8_t> split_;
+    std::vector<float> openness_;  ///< per cluster (Node::cluster)
     std::size_t rays_ = 0;
     std::size_t max_bytes_ = 0;
     std::atomic<std::size_t> links_{0};  ///< links made, plus pairs waiting (each may become one)

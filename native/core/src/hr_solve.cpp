@@ -148,7 +148,13 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             sum += double(tree.nodes[c].area) * tree.nodes[c].radiance;
             area += tree.nodes[c].area;
         }
-        n.radiance = sum / area;
+        // Children without area (they carry no power) have no area mean: their plain mean.
+        if (area > 0.0) {
+            n.radiance = sum / area;
+        } else {
+            n.radiance = Rgb(0.0);
+            for (int k = 0; k < n.child_count; ++k) n.radiance += tree.nodes[child(n, k)].radiance / double(n.child_count);
+        }
     }
     set_range(tree, n);
 }
@@ -194,6 +200,19 @@ SweepResult solve_links(Tree& tree, double tolerance, int max_sweeps, std::vecto
         Totals totals;
         push_pull(tree, tree.root, AmbientCube{}, Rgb(0.0), true, totals);
         ++result.sweeps;
+        if (!std::isfinite(totals.change) || !std::isfinite(totals.total)) {
+            result.finite = false;
+            result.converged = false;
+            result.residual = std::numeric_limits<double>::quiet_NaN();
+            history.push_back(result.residual);
+            for (std::size_t i = 0; i < tree.nodes.size() && result.bad_node < 0; ++i) {
+                const Node& n = tree.nodes[i];
+                const Rgb& L = n.radiance;
+                if (n.is_element() && n.is_leaf() && !(std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)))
+                    result.bad_node = static_cast<int32_t>(i);
+            }
+            break;
+        }
         result.residual = totals.total > 0.0 ? totals.change / totals.total : 0.0;
         history.push_back(result.residual);
         result.converged = result.residual <= tolerance;

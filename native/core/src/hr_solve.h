@@ -12,6 +12,10 @@ struct SweepResult {
     int sweeps = 0;
     double residual = 0.0;  ///< sum A |L_new - L_old| / sum A |L_new| (leaves, all channels)
     bool converged = false;
+    /// False when a sweep's light was not finite (the sweeps stop there; `bad_node` is a leaf whose
+    /// radiance is not, or -1): never "converged" on a residual of NaN.
+    bool finite = true;
+    int32_t bad_node = -1;
 };
 
 /// Pull only: leaves keep their radiance, parents and emitters follow (before the first links).

@@ -68,7 +68,8 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     : lights(lights_in), min_element_size_(min_element_size), max_leaves_(max_leaves) {
     const Elements& e = build.elements;
     std::size_t welded = 0;
-    patch_vertex = detail::weld_points(e.vertices, detail::weld_tolerance(e.vertices), welded);
+    weld_tolerance = detail::weld_tolerance(e.vertices);
+    patch_vertex = detail::weld_points(e.vertices, weld_tolerance, welded);
     vertices.grow_by(welded);
     for (std::size_t v = 0; v < e.vertices.size(); ++v) vertices[patch_vertex[v]] = e.vertices[v];
 
@@ -91,6 +92,8 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
         n.normal = e.normal[p];
         n.area = e.area[p];
         n.longest_edge = longest_edge(c, count);
+        for (int k = 0; k < count; ++k) n.collapsed = n.collapsed || n.corners[k] == n.corners[(k + 1) % count];
+        n.collapsed = n.collapsed || !(polygon_area(c, count) > 0.0f);
         for (int k = 0; k < count; ++k) n.radius = std::max(n.radius, glm::length(c[k] - n.centre));
         n.reflectance = e.reflectance[p];
         n.emission = e.emission[p];
@@ -108,6 +111,7 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
     splits.resize(cluster_count);
     patch_centres.resize(patch_count);
     for (std::size_t p = 0; p < patch_count; ++p) patch_centres[p] = nodes[p].centre;
+    patch_polygon = e.polygon;
     for (std::size_t k = 0; k < cluster_count; ++k) {
         const Node& c = nodes[patch_count + k];
         const float left = nodes[c.first_child].area, right = nodes[c.second_child].area;

@@ -82,6 +82,11 @@ using AmbientCube = std::array<Rgb, 6>;
 
 struct Node {
     Kind kind = Kind::Element;
+    /// Patches: the weld (Tree's vertices) made two of its corners one, or left its corners no
+    /// area: a sliver thinner than the weld tolerance (a contact cut between two block sides a
+    /// hundredth of a millimetre apart). It stays whole: its children would have no area, and the
+    /// push-pull's area mean of them would be 0 / 0.
+    bool collapsed = false;
     int32_t parent = -1;
     int32_t first_child = -1;       ///< elements: 4 contiguous children; clusters: 2, see child()
     int32_t second_child = -1;      ///< clusters only
@@ -173,7 +178,11 @@ public:
     std::vector<AmbientCube> cubes;
     std::vector<ClusterSplit> splits;
     std::vector<Vec3> patch_centres;        ///< per patch: Node::centre, where those walks end
+    std::vector<int32_t> patch_polygon;     ///< per patch: its input polygon (Elements::polygon)
     float scene_size = 0.0f;                ///< bounding box diagonal, metres
+    /// Points closer than this are one vertex (detail::weld_tolerance), and a point closer than
+    /// this to a plane lies in it (in_plane_of).
+    float weld_tolerance = 0.0f;
 
     /// Splits element `e` into four (once; safe to call from several threads). Returns false when
     /// it is too small to split (its children's longest edges would be below `finest`, by default
@@ -185,7 +194,9 @@ public:
     /// Its emitter's power alone (S = sum L A).
     Rgb power(const Node& n) const { return n.kind == Kind::Cluster ? emitters[n.cluster].power : element_power(n); }
     bool can_split(const Node& n) const { return can_split(n, min_element_size_); }
-    bool can_split(const Node& n, float finest) const { return n.is_element() && n.longest_edge >= 2.0f * finest; }
+    bool can_split(const Node& n, float finest) const {
+        return n.is_element() && !n.collapsed && n.longest_edge >= 2.0f * finest;
+    }
     float min_element_size() const { return min_element_size_; }
     /// The vertex halfway along a - b, made once and shared by both elements at that edge.
     int32_t midpoint(int32_t a, int32_t b);
@@ -207,6 +218,22 @@ private:
     mutable std::mutex midpoint_lock_;
     std::map<std::pair<int32_t, int32_t>, int32_t> midpoints_;
 };
+
+/// The input polygon node `n` lies on (-1 for clusters and lamps): what an error names.
+inline int32_t input_polygon(const Tree& tree, const Node& n) {
+    return n.is_element() && n.patch >= 0 ? tree.patch_polygon[n.patch] : -1;
+}
+
+/// Whether a point `x` of a face with unit normal `normal` lies in element `source`'s plane, that
+/// face parallel to it (back to back, or face to face in contact), within the weld tolerance.
+/// Round-off alone puts such a point a hair in front of the plane or behind it, and a polygon a
+/// hair in front covers the point's whole hemisphere: its factor would be 0 or 1 by chance (an
+/// emitter's unlit back gathered three quarters of its light). Faces across an edge from the
+/// source (a wall beside a floor) are not parallel to it: a point at their common edge sees it.
+inline bool in_plane_of(const Tree& tree, const Node& source, const Vec3& x, const Vec3& normal) {
+    return std::abs(glm::dot(source.normal, normal)) > 0.999f &&
+           std::abs(glm::dot(source.normal, x - tree.vertices[source.corners[0]])) <= tree.weld_tolerance;
+}
 
 /// Sample points of an element for the factor and visibility estimates: 2 x 2 Gauss-Legendre
 /// points of its bilinear map (quads) or the 3-point rule's points (triangles). Returns the count.

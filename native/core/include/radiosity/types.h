@@ -5,9 +5,11 @@
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace radiosity {
 
@@ -56,6 +58,18 @@ struct NotConverged : std::runtime_error {
 /// Thrown when a file (OpenVDB) cannot be read or written; the message names the file.
 struct FileError : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+
+/// Thrown when a phase produced light that is not a finite number: a fault of the bake, never a
+/// result. Names the phase ("links", "solve", "output") and the input polygon where it appeared
+/// (-1 when no polygon is to blame), so that the caller can name the object.
+struct NumericalError : std::runtime_error {
+    NumericalError(std::string phase_name, int32_t input_polygon)
+        : std::runtime_error("non-finite light in phase '" + phase_name + "'" +
+                             (input_polygon >= 0 ? " at input polygon " + std::to_string(input_polygon) : std::string())),
+          phase(std::move(phase_name)), polygon(input_polygon) {}
+    std::string phase;
+    int32_t polygon = -1;
 };
 
 }  // namespace radiosity
