@@ -372,7 +372,8 @@ def test_non_finite_light_is_an_error_naming_the_phase_and_the_object():
     original = core.bake_hierarchical
 
     def failing(*arguments, **keywords):
-        error = core.NumericalError("non-finite light in phase 'solve' at input polygon %d" % (blocks.polygon_start + 5))
+        error = core.NumericalError("non-finite light in phase 'solve' at input polygon %d"
+                                    % (blocks.polygon_start + 5))
         error.phase, error.polygon = "solve", blocks.polygon_start + 5
         raise error
 

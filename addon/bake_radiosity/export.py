@@ -58,7 +58,8 @@ def export_scene(depsgraph, view_layer):
         obj = instance.object
         if obj.type == "LIGHT":
             builder.add_light(obj, instance.matrix_world)
-        elif obj.type in GEOMETRY_TYPES and not is_bake_output(obj.original) and not media_materials.is_medium_only(obj):
+        elif (obj.type in GEOMETRY_TYPES and not is_bake_output(obj.original)
+              and not media_materials.is_medium_only(obj)):
             builder.add_geometry(instance)  # a medium-only mesh has no surface in Cycles; media_export reads it
     return builder.finish()
 

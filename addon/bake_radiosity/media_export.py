@@ -73,7 +73,8 @@ def _volume_material(obj, warnings):
     with_volume = [s.material for s in obj.material_slots if media_materials.volume_output_node(s.material) is not None]
     names = sorted({m.name for m in with_volume})
     if len(names) > 1:
-        warnings.append("Object '%s' has several volume materials; its medium uses '%s'" % (obj.name, with_volume[0].name))
+        warnings.append("Object '%s' has several volume materials; its medium uses '%s'"
+                        % (obj.name, with_volume[0].name))
     return with_volume[0] if with_volume else None
 
 
@@ -101,7 +102,8 @@ def _mesh_medium(obj, matrix, material, shader, zone_size, warnings):
     inside = native.core().voxelize_mesh(positions, offsets, corners, zone_size)
     named = ({t.density_grid for t in shader.terms} | {t.emission_grid for t in shader.terms}) - {None, "density"}
     if named:
-        warnings.append("Object '%s': a mesh has no grids %s; they count as 1 inside it" % (obj.name, ", ".join(sorted(named))))
+        warnings.append("Object '%s': a mesh has no grids %s; they count as 1 inside it"
+                        % (obj.name, ", ".join(sorted(named))))
     # Inside a mesh every grid a shader names reads as the volume fraction (Cycles finds no grid
     # and keeps the socket's value), so density and emission both scale by it.
     fraction = inside["values"]
@@ -128,7 +130,8 @@ def _volume_object_medium(obj, matrix, material, shader, zone_size, warnings):
     origin, values = _common_lattice(read, zone_size)
     occupied = np.zeros(next(iter(values.values())).shape[:3], dtype=np.float32)
     for name, grid in values.items():
-        occupied = np.maximum(occupied, (np.abs(grid if grid.ndim == 3 else grid.mean(axis=-1)) > 0.0).astype(np.float32))
+        magnitude = np.abs(grid if grid.ndim == 3 else grid.mean(axis=-1))
+        occupied = np.maximum(occupied, (magnitude > 0.0).astype(np.float32))
     zeros = np.zeros_like(occupied)
     medium = _medium(obj, material, shader, origin, zone_size, lambda name: values.get(name, zeros), occupied, warnings)
     if medium is not None:
@@ -194,4 +197,3 @@ def describe(exported):
         return ""
     return "%d medium/media, zone size %.3g m, %d zones" % (
         len(exported.media), exported.zone_size, zone_count_estimate(exported.media))
-

@@ -49,7 +49,8 @@ def settings_of(scene, overrides=None):
     if settings["method"] not in ("AUTO",) + tuple(auto_settings.CORE_METHODS):
         raise TypeError("method must be AUTO, GAUSS_SEIDEL, PROGRESSIVE, JACOBI or HIERARCHICAL, got %r"
                         % settings["method"])
-    if settings["quality"] == "CUSTOM" and not 16 <= int(settings["hemicube_resolution"]) <= auto_settings.MAX_RESOLUTION:
+    resolution = int(settings["hemicube_resolution"])
+    if settings["quality"] == "CUSTOM" and not 16 <= resolution <= auto_settings.MAX_RESOLUTION:
         raise BakeError("Resolution must be between 16 and %d, got %s (the presets turn hemi-cubes about the normal "
                         "where a scene needs more)" % (auto_settings.MAX_RESOLUTION, settings["hemicube_resolution"]))
     if settings["target"] not in TARGETS:
@@ -137,7 +138,8 @@ class BakeJob:
                 lights=e.lights, max_bytes=c.budget_bytes, progress=progress)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
-            over_relaxation = {"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION} if method == "gauss_seidel" else {}
+            over_relaxation = ({"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION}
+                               if method == "gauss_seidel" else {})
             bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media],
                                      **over_relaxation)
         return bake(
@@ -273,7 +275,8 @@ def progress_text(info, tolerance):
         residual = max(info["residual"], 1e-300)
         share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
-    phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh"}.get(info["phase"], info["phase"])
+    phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
+             "gather": "final gather"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 
