@@ -39,9 +39,7 @@ Visibility::~Visibility() {
 }
 
 bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray{};
+    RTCRay ray{};  // flags, time and id 0
     ray.org_x = origin.x;
     ray.org_y = origin.y;
     ray.org_z = origin.z;
@@ -51,7 +49,17 @@ bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_nea
     ray.tnear = t_near;
     ray.tfar = t_far;
     ray.mask = 0xFFFFFFFFu;
+#if RADIOSITY_EMBREE_MAJOR == 4
+    // Embree 4: the context became optional arguments; the defaults (incoherent rays, no filter,
+    // every feature) are Embree 3's rtcInitIntersectContext defaults.
+    RTCOccludedArguments arguments;
+    rtcInitOccludedArguments(&arguments);
+    rtcOccluded1(scene_, &ray, &arguments);
+#else
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
     rtcOccluded1(scene_, &context, &ray);
+#endif
     return ray.tfar < 0.0f;  // Embree marks a hit by tfar = -inf
 }
 
