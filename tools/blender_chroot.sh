@@ -83,6 +83,7 @@ create() {
   printf 'Acquire::Check-Valid-Until "false";\nAPT::Install-Recommends "false";\n' > "$partial/etc/apt/apt.conf.d/90bake-radiosity"
   printf '#!/bin/sh\nexit 101\n' > "$partial/usr/sbin/policy-rc.d"; chmod +x "$partial/usr/sbin/policy-rc.d"
   echo "deb $mirror $suite main" > "$partial/etc/apt/sources.list"
+  ln -sfn ../proc/self/mounts "$partial/etc/mtab"  # Blender asks for the mounted file systems
   # Blender is installed by apt after the base system: debootstrap cannot resolve sid's virtual
   # packages (libopenexr-…-imath-…).
   in_chroot "$partial" "" /bin/sh -ec "apt-get update -q && apt-get install -y -q ${packages[*]} && apt-get clean" >&2
@@ -99,6 +100,7 @@ case $action in
     [ "${1:-}" = "--" ] && shift
     [ $# -ge 1 ] || usage
     complete "$dir" || create
+    [ -e "$dir/etc/mtab" ] || ln -sfn ../proc/self/mounts "$dir/etc/mtab"  # chroots made before it was added
     in_chroot "$dir" "$root_dir" /bin/sh -c 'cd "$0" && exec "$@"' "$root_dir" "$@"
     ;;
   *) usage ;;
