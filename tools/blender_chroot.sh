@@ -95,7 +95,9 @@ create() {
 case $action in
   create) create ;;
   path) echo "$dir" ;;
-  remove) rm -rf --one-file-system "$dir" "$partial" ;;
+  remove)
+    mkdir -p "$cache"; exec 9>"$cache/chroot-$suite.lock"; flock 9
+    rm -rf --one-file-system "$dir" "$partial" ;;
   run)
     [ "${1:-}" = "--" ] && shift
     [ $# -ge 1 ] || usage
