@@ -25,8 +25,16 @@ def clear_scene():
     world = bpy.context.scene.world
     if world is not None:
         # A black world: light that leaves the scene is lost, as in a radiosity solution.
-        world.use_nodes = False
         world.color = (0.0, 0.0, 0.0)
+        if bpy.app.version >= (5, 0, 0):
+            # Blender 5 deprecated World.use_nodes (setting it does nothing): a world always
+            # renders its node tree, whose default Background is grey. Make that black.
+            for node in world.node_tree.nodes if world.node_tree else ():
+                if node.type == "BACKGROUND":
+                    node.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+                    node.inputs["Strength"].default_value = 0.0
+        else:
+            world.use_nodes = False
 
 
 def grid(origin, u, v, nu, nv):

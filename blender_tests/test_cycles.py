@@ -32,8 +32,10 @@ def cycles_bake(obj, seed):
     name = "Cycles %d" % seed
     attributes = obj.data.color_attributes
     attributes.active_color = attributes.new(name, "FLOAT_COLOR", "CORNER")
+    bpy.context.view_layer.update()
     for other in bpy.context.view_layer.objects:
-        other.select_set(False)
+        if other is not None:  # Blender 5.2 lists objects just removed as None until it redraws
+            other.select_set(False)
     obj.select_set(True)
     bpy.context.view_layer.objects.active = obj
     assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}

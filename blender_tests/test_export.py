@@ -114,7 +114,9 @@ def test_materials():
     node = principled.node_tree.nodes["Principled BSDF"]
     node.inputs["Base Color"].default_value = (0.6, 0.4, 0.2, 1)
     node.inputs["Metallic"].default_value = 0.25
-    node.inputs["Emission"].default_value = (1.0, 0.5, 0.25, 1)
+    # Blender 4.0 renamed the Principled BSDF's "Emission" socket "Emission Color".
+    emission = node.inputs["Emission Color" if bpy.app.version >= (4, 0, 0) else "Emission"]
+    emission.default_value = (1.0, 0.5, 0.25, 1)
     node.inputs["Emission Strength"].default_value = 3.0
 
     textured = bpy.data.materials.new("Textured")

@@ -107,7 +107,8 @@ def _medium_material():
     if material is not None:
         return material
     material = bpy.data.materials.new(MATERIAL_NAME)
-    material.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: materials always use nodes
+        material.use_nodes = True
     nodes, links = material.node_tree.nodes, material.node_tree.links
     nodes.clear()
     output = nodes.new("ShaderNodeOutputMaterial")

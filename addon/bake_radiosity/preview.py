@@ -89,7 +89,8 @@ def _view_shadings():
 
 def _emission_material(attribute_name):
     material = bpy.data.materials.get(MATERIAL_NAME) or bpy.data.materials.new(MATERIAL_NAME)
-    material.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: materials always use nodes
+        material.use_nodes = True
     nodes = material.node_tree.nodes
     nodes.clear()
     attribute = nodes.new("ShaderNodeAttribute")

@@ -1,47 +1,113 @@
 /// @file hr_visibility.cpp
 /// @brief The patches as one Embree quad geometry (triangles as quads with a repeated corner).
+///
+/// Embree is opened with dlopen(RTLD_LOCAL) and called through the addresses dlsym gives, never
+/// linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc* calls
+/// would bind to the Embree loaded first, whatever version it is (an Embree 3 call on Embree 4
+/// misses every ray: hierarchical bakes lose their shadows without an error). dlsym on our own
+/// handle returns our Embree's functions; Embree exports nothing but its rtc* API and does not
+/// call it itself, so nothing inside it binds to the other Embree either.
 #include "hr_visibility.h"
 
+#include <dlfcn.h>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace radiosity::hr {
+
+namespace {
+
+/// The Embree functions used here (decltype is unevaluated: no reference to the symbols).
+struct Embree {
+    decltype(&::rtcNewDevice) newDevice;
+    decltype(&::rtcReleaseDevice) releaseDevice;
+    decltype(&::rtcNewScene) newScene;
+    decltype(&::rtcReleaseScene) releaseScene;
+    decltype(&::rtcSetSceneBuildQuality) setSceneBuildQuality;
+    decltype(&::rtcSetSceneFlags) setSceneFlags;
+    decltype(&::rtcCommitScene) commitScene;
+    decltype(&::rtcNewGeometry) newGeometry;
+    decltype(&::rtcSetNewGeometryBuffer) setNewGeometryBuffer;
+    decltype(&::rtcCommitGeometry) commitGeometry;
+    decltype(&::rtcAttachGeometry) attachGeometry;
+    decltype(&::rtcReleaseGeometry) releaseGeometry;
+    decltype(&::rtcOccluded1) occluded1;
+};
+
+Embree load_embree() {
+    void* library = nullptr;
+    std::string errors;
+    for (const char* name : {RADIOSITY_EMBREE_SONAME, RADIOSITY_EMBREE_PATH}) {
+        if ((library = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;  // never closed
+        errors += std::string(errors.empty() ? "" : "; ") + dlerror();
+    }
+    if (!library) throw std::runtime_error("Embree: cannot load " RADIOSITY_EMBREE_SONAME ": " + errors);
+    auto get = [library](auto& function, const char* name) {
+        void* address = dlsym(library, name);
+        if (!address) throw std::runtime_error(std::string("Embree: ") + RADIOSITY_EMBREE_SONAME + " has no " + name);
+        function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(address);
+    };
+    Embree e{};
+    get(e.newDevice, "rtcNewDevice");
+    get(e.releaseDevice, "rtcReleaseDevice");
+    get(e.newScene, "rtcNewScene");
+    get(e.releaseScene, "rtcReleaseScene");
+    get(e.setSceneBuildQuality, "rtcSetSceneBuildQuality");
+    get(e.setSceneFlags, "rtcSetSceneFlags");
+    get(e.commitScene, "rtcCommitScene");
+    get(e.newGeometry, "rtcNewGeometry");
+    get(e.setNewGeometryBuffer, "rtcSetNewGeometryBuffer");
+    get(e.commitGeometry, "rtcCommitGeometry");
+    get(e.attachGeometry, "rtcAttachGeometry");
+    get(e.releaseGeometry, "rtcReleaseGeometry");
+    get(e.occluded1, "rtcOccluded1");
+    return e;
+}
+
+/// Loaded on first use, once (a failed load throws and is tried again next time).
+const Embree& embree() {
+    static const Embree api = load_embree();
+    return api;
+}
+
+}  // namespace
 
 Visibility::Visibility(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 4>>& corners,
                        float scene_size)
     : gap_(1e-6f * scene_size), scene_size_(scene_size) {
-    device_ = rtcNewDevice(nullptr);
+    const Embree& e = embree();
+    device_ = e.newDevice(nullptr);
     if (!device_) throw std::runtime_error("Embree: no device");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // watertight: rays along a shared edge must not slip through
-    RTCGeometry quads = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
-    auto* position = static_cast<float*>(rtcSetNewGeometryBuffer(quads, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+    scene_ = e.newScene(device_);
+    e.setSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    e.setSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // watertight: rays along a shared edge must not slip through
+    RTCGeometry quads = e.newGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
+    auto* position = static_cast<float*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), vertices.size()));
     for (std::size_t v = 0; v < vertices.size(); ++v)
         for (int a = 0; a < 3; ++a) position[3 * v + a] = vertices[v][a];
-    auto* index = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(quads, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
+    auto* index = static_cast<uint32_t*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
                                                                  4 * sizeof(uint32_t), corners.size()));
     for (std::size_t p = 0; p < corners.size(); ++p)
         for (int k = 0; k < 4; ++k) index[4 * p + k] = static_cast<uint32_t>(corners[p][k] >= 0 ? corners[p][k] : corners[p][2]);
-    rtcCommitGeometry(quads);
-    rtcAttachGeometry(scene_, quads);
-    rtcReleaseGeometry(quads);
-    rtcCommitScene(scene_);
+    e.commitGeometry(quads);
+    e.attachGeometry(scene_, quads);
+    e.releaseGeometry(quads);
+    e.commitScene(scene_);
 }
 
 Visibility::~Visibility() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
+    embree().releaseScene(scene_);
+    embree().releaseDevice(device_);
 }
 
 bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray{};
+    RTCRay ray{};  // flags, time and id 0
     ray.org_x = origin.x;
     ray.org_y = origin.y;
     ray.org_z = origin.z;
@@ -51,7 +117,17 @@ bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_nea
     ray.tnear = t_near;
     ray.tfar = t_far;
     ray.mask = 0xFFFFFFFFu;
-    rtcOccluded1(scene_, &context, &ray);
+#if RADIOSITY_EMBREE_MAJOR == 4
+    // Embree 4: the context became optional arguments; the defaults (incoherent rays, no filter,
+    // every feature) are Embree 3's rtcInitIntersectContext defaults.
+    RTCOccludedArguments arguments;
+    rtcInitOccludedArguments(&arguments);
+    embree().occluded1(scene_, &ray, &arguments);
+#else
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    embree().occluded1(scene_, &context, &ray);
+#endif
     return ray.tfar < 0.0f;  // Embree marks a hit by tfar = -inf
 }
 

@@ -5,7 +5,13 @@
 
 #include "radiosity/types.h"
 
+#if RADIOSITY_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#elif RADIOSITY_EMBREE_MAJOR == 3
 #include <embree3/rtcore.h>
+#else
+#error "RADIOSITY_EMBREE_MAJOR must be 3 or 4 (set by native/core/CMakeLists.txt)"
+#endif
 
 #include <cstdint>
 #include <vector>

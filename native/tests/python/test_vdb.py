@@ -5,7 +5,10 @@ import tempfile
 import unittest
 
 import numpy as np
-import pyopenvdb as vdb
+try:
+    import openvdb as vdb  # OpenVDB 11 and later (Debian sid: 13) name the module openvdb
+except ImportError:
+    import pyopenvdb as vdb  # OpenVDB 10 (Debian 12, 13)
 
 import _core
 
