@@ -8,6 +8,7 @@ packages=(
   libglm-dev libtbb-dev libembree-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb
   googletest libgtest-dev libbenchmark-dev
   blender xvfb xauth xdotool
+  flake8
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -37,6 +37,7 @@ struct Embree {
     decltype(&::rtcAttachGeometry) attachGeometry;
     decltype(&::rtcReleaseGeometry) releaseGeometry;
     decltype(&::rtcOccluded1) occluded1;
+    decltype(&::rtcIntersect1) intersect1;
 };
 
 Embree load_embree() {
@@ -66,6 +67,7 @@ Embree load_embree() {
     get(e.attachGeometry, "rtcAttachGeometry");
     get(e.releaseGeometry, "rtcReleaseGeometry");
     get(e.occluded1, "rtcOccluded1");
+    get(e.intersect1, "rtcIntersect1");
     return e;
 }
 
@@ -149,8 +151,6 @@ bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
 }
 
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     RTCRayHit query{};
     query.ray.org_x = from.x;
     query.ray.org_y = from.y;
@@ -163,7 +163,15 @@ Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, f
     query.ray.mask = 0xFFFFFFFFu;
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &query);
+#if RADIOSITY_EMBREE_MAJOR == 4
+    RTCIntersectArguments arguments;  // the defaults, as for occluded()
+    rtcInitIntersectArguments(&arguments);
+    embree().intersect1(scene_, &query, &arguments);
+#else
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    embree().intersect1(scene_, &context, &query);
+#endif
     Hit hit;
     if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         hit.patch = static_cast<int32_t>(query.hit.primID);
