@@ -101,6 +101,17 @@ def emission(name, color, strength):
     return material
 
 
+def fog_material(name="Fog"):
+    """A material with only a Principled Volume (its defaults) on the output's Volume input."""
+    fog = bpy.data.materials.new(name)
+    fog.use_nodes = True
+    nodes = fog.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    volume = nodes.new("ShaderNodeVolumePrincipled")
+    fog.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    return fog
+
+
 def furnace_material(rho, emitted):
     """Diffuse + Emission through an Add Shader, which the export must sum."""
     material = bpy.data.materials.new("Furnace")

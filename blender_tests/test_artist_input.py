@@ -21,16 +21,22 @@ materials = sys.modules[harness.MODULE + ".materials"]
 ui = sys.modules[harness.MODULE + ".ui"]
 
 
+def shader_group(name, colour_input):
+    """An empty shader node group with one colour input and a Shader output."""
+    group = bpy.data.node_groups.new(name, "ShaderNodeTree")
+    if bpy.app.version >= (4, 0, 0):
+        group.interface.new_socket(colour_input, in_out="INPUT", socket_type="NodeSocketColor")
+        group.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
+    else:
+        group.inputs.new("NodeSocketColor", colour_input)
+        group.outputs.new("NodeSocketShader", "Shader")
+    return group
+
+
 def diffuse_group(name, color):
     """A node group 'name' with a Color input feeding a Diffuse BSDF inside, and a material that uses
     it with `color` on the group node (as an artist's "Wall" group would be)."""
-    group = bpy.data.node_groups.new(name, "ShaderNodeTree")
-    if bpy.app.version >= (4, 0, 0):
-        group.interface.new_socket("Color", in_out="INPUT", socket_type="NodeSocketColor")
-        group.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
-    else:
-        group.inputs.new("NodeSocketColor", "Color")
-        group.outputs.new("NodeSocketShader", "Shader")
+    group = shader_group(name, "Color")
     inside_in, inside_out = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
     bsdf = group.nodes.new("ShaderNodeBsdfDiffuse")
     group.links.new(inside_in.outputs["Color"], bsdf.inputs["Color"])
@@ -56,13 +62,7 @@ def test_a_diffuse_bsdf_inside_a_node_group_keeps_its_colour():
 
 def test_a_group_inside_a_group_and_an_unconnected_group_output():
     inner = diffuse_group("Inner", (0.0, 0.0, 0.0)).node_tree.nodes["Group"].node_tree
-    outer = bpy.data.node_groups.new("Outer", "ShaderNodeTree")
-    if bpy.app.version >= (4, 0, 0):
-        outer.interface.new_socket("Tint", in_out="INPUT", socket_type="NodeSocketColor")
-        outer.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
-    else:
-        outer.inputs.new("NodeSocketColor", "Tint")
-        outer.outputs.new("NodeSocketShader", "Shader")
+    outer = shader_group("Outer", "Tint")
     group_in, group_out = outer.nodes.new("NodeGroupInput"), outer.nodes.new("NodeGroupOutput")
     nested = outer.nodes.new("ShaderNodeGroup")
     nested.node_tree = inner

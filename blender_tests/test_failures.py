@@ -88,12 +88,7 @@ def test_an_unwritable_media_folder_fails_before_the_solve():
     """Fog whose grids would go into a folder that cannot be made (its parent is a file): the bake
     says so before any form factor is computed, and the file is as it was."""
     room_with_panel(0.5)
-    fog = bpy.data.materials.new("Fog")
-    fog.use_nodes = True
-    nodes = fog.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    volume = nodes.new("ShaderNodeVolumePrincipled")
-    fog.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    fog = scenes.fog_material()
     scenes.mesh_object("Fog", [scenes.grid(o, u, v, 1, 1) + (0,) for o, u, v in
                                [((0.5 + 0.5 * o[0], 0.5 + 0.5 * o[1], 0.5 + 0.5 * o[2]),
                                  tuple(0.5 * c for c in u), tuple(0.5 * c for c in v))

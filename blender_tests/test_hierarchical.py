@@ -280,12 +280,7 @@ def test_esc_while_the_hierarchy_refines_changes_nothing():
 
 def test_fog_refuses_the_method_and_changes_nothing():
     floor = floor_under_lamp()
-    fog = bpy.data.materials.new("Fog")
-    fog.use_nodes = True
-    nodes = fog.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    volume = nodes.new("ShaderNodeVolumePrincipled")
-    fog.node_tree.links.new(volume.outputs[0], nodes["Material Output"].inputs["Volume"])
+    fog = scenes.fog_material()
     cube = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
             ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
             ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
