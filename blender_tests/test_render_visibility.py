@@ -166,8 +166,12 @@ def instancing_plane(name, location):
     """A plane whose geometry nodes put a cube on each of its corners and keep the plane too."""
     plane = scenes.mesh_object(name, [scenes.grid(location, (0.2, 0, 0), (0, 0.2, 0), 1, 1) + (0,)])
     tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
-    tree.inputs.new("NodeSocketGeometry", "Geometry")
-    tree.outputs.new("NodeSocketGeometry", "Geometry")
+    if bpy.app.version >= (4, 0, 0):  # 4.0 moved a group's sockets into its interface
+        tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+        tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    else:
+        tree.inputs.new("NodeSocketGeometry", "Geometry")
+        tree.outputs.new("NodeSocketGeometry", "Geometry")
     nodes, links = tree.nodes, tree.links
     group_in, group_out = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
     on_points, cube, join = (nodes.new("GeometryNodeInstanceOnPoints"), nodes.new("GeometryNodeMeshCube"),

@@ -7,7 +7,12 @@ strength to colour x power and then:
   (its cone does not concentrate the power), with Cycles' smoothstep blend at the rim.
 - sun: irradiance strength W/m^2 on a surface facing it.
 - area: one-sided radiance strength / (4 A) from the lamp's -Z side, A = size_x * size_y
-  (times the object's scale, times pi/4 for disk and ellipse).
+  (times the object's scale, times pi/4 for disk and ellipse). From Blender 4.0 on, Cycles
+  converts a lamp's radiant flux to radiance by pi (scene/light.cpp: eval_fac = invarea / pi):
+  strength / (pi A), and strength / pi where the lamp's Normalize is off (invarea = 1).
+  Measured against Cycles 4.3 and 5.2: 4 / pi brighter than 3.4's, as this says.
+- Blender 4.x adds Exposure (strength x 2^exposure) and a Temperature colour (where the lamp
+  uses it, colour x temperature_color); older Blenders have neither.
 
 A lamp's node tree is its shader, and the shader's emission multiplies that strength
 (lamp_strength below). Lamps whose strength is 0 add nothing and are left out, as Cycles leaves
@@ -19,6 +24,7 @@ problem once for all the lamps that have it (visibility.listing).
 
 import math
 
+import bpy
 import numpy as np
 
 from . import materials
@@ -54,7 +60,11 @@ def lamp_strength(light_object):
     """
     light = light_object.data
     factor, problems = node_tree_factor(light_object)
-    strength = np.array(light.color[:3], dtype=np.float64) * float(light.energy) * factor
+    color = np.array(light.color[:3], dtype=np.float64)
+    if getattr(light, "use_temperature", False):
+        color = color * np.array(light.temperature_color[:3], dtype=np.float64)
+    power = float(light.energy) * 2.0 ** float(getattr(light, "exposure", 0.0))
+    strength = color * power * factor
     if not np.isfinite(strength).all() or (strength < 0.0).any():
         name, unit = ("Strength", "W/m²") if light.type == "SUN" else ("Power", "W")
         if light.energy < 0.0:
@@ -153,8 +163,18 @@ def area_quads(light_object, matrix, strength):
     problems = []
     if light.spread < math.pi - 1e-6:
         problems.append((SPREAD, (light_object.name, "%.0f deg" % math.degrees(light.spread))))
-    radiance = strength / (4.0 * area) if area > 0.0 else np.zeros(3)
+    radiance = area_radiance(light, strength, area)
     return vertices, quads, radiance, problems
+
+
+def area_radiance(light, strength, area):
+    """Radiance (3,) of an area lamp of `strength` whose polygon has `area`, as this Blender's
+    Cycles converts it (see the top of this file)."""
+    if not area > 0.0:
+        return np.zeros(3)
+    if bpy.app.version < (4, 0, 0):
+        return strength / (4.0 * area)
+    return strength / (math.pi * (area if getattr(light, "normalize", True) else 1.0))
 
 
 def _emitting_axis(light_object, matrix):
