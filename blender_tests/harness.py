@@ -57,6 +57,24 @@ def use_unbiased_cycles(samples, seed, bounces=128, volume_bounces=0, transparen
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
 
 
+def cycles_corner_bake(obj, samples, seed):
+    """(corners, 3) colours of Cycles' Combined bake of `obj` into a new colour attribute 'Cycles
+    <seed>', with use_unbiased_cycles(samples, seed)."""
+    use_unbiased_cycles(samples, seed)
+    bpy.context.scene.render.bake.target = "VERTEX_COLORS"
+    name = "Cycles %d" % seed
+    attributes = obj.data.color_attributes
+    attributes.active_color = attributes.new(name, "FLOAT_COLOR", "CORNER")
+    bpy.context.view_layer.update()
+    for other in bpy.context.view_layer.objects:
+        if other is not None:  # Blender 5.2 lists objects just removed as None until it redraws
+            other.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
+    return corner_colors(obj.data, name)
+
+
 def run(*tests):
     """Runs each test function, reports, and raises if any failed."""
     failures = []

@@ -25,23 +25,6 @@ MAX_CYCLES_NOISE = 0.01
 EMITTER_MATERIAL = 3
 
 
-def cycles_bake(obj, seed):
-    harness.use_unbiased_cycles(SAMPLES_PER_HALF, seed)
-    scene = bpy.context.scene
-    scene.render.bake.target = "VERTEX_COLORS"
-    name = "Cycles %d" % seed
-    attributes = obj.data.color_attributes
-    attributes.active_color = attributes.new(name, "FLOAT_COLOR", "CORNER")
-    bpy.context.view_layer.update()
-    for other in bpy.context.view_layer.objects:
-        if other is not None:  # Blender 5.2 lists objects just removed as None until it redraws
-            other.select_set(False)
-    obj.select_set(True)
-    bpy.context.view_layer.objects.active = obj
-    assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
-    return harness.corner_colors(obj.data, name)
-
-
 def compared_corners(mesh):
     """Loops of the mesh that do not belong to the emitting opening (which only emits)."""
     material = np.empty(len(mesh.polygons), dtype=np.int64)
@@ -63,7 +46,7 @@ METHODS = {"uniform": (dict(method="GAUSS_SEIDEL", hemicube_resolution=256, tole
 def compare(light):
     scenes.clear_scene()
     box = scenes.cornell_box(light)
-    halves = [cycles_bake(box, seed) for seed in (1, 2)]
+    halves = [harness.cycles_corner_bake(box, SAMPLES_PER_HALF, seed) for seed in (1, 2)]
     keep = compared_corners(box.data)
     reference = 0.5 * (halves[0][keep] + halves[1][keep])
     scale = np.sqrt(np.mean(reference ** 2))

@@ -8,7 +8,6 @@ import argparse
 import os
 import sys
 
-import bpy
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -25,17 +24,6 @@ args = parser.parse_args(argv)
 
 scenes.clear_scene()
 box = scenes.cornell_box(args.light)
-halves = []
-for seed in (1, 2):
-    harness.use_unbiased_cycles(args.samples, seed)
-    name = "Cycles %d" % seed
-    attributes = box.data.color_attributes
-    attributes.active_color = attributes.new(name, "FLOAT_COLOR", "CORNER")
-    for other in bpy.context.view_layer.objects:
-        other.select_set(False)
-    box.select_set(True)
-    bpy.context.view_layer.objects.active = box
-    assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
-    halves.append(harness.corner_colors(box.data, name))
+halves = [harness.cycles_corner_bake(box, args.samples, seed) for seed in (1, 2)]
 np.savez(args.out, half1=halves[0], half2=halves[1], positions=harness.corner_positions(box.data))
 print("saved", args.out, halves[0].shape)

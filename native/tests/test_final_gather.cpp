@@ -42,6 +42,20 @@ std::vector<std::size_t> corners_at(const test::SceneArrays& s, const Vec3& p) {
     return found;
 }
 
+/// A unit square of radiance Le (reflecting nothing) at height h over the origin, facing down.
+void add_emitter(test::SceneArrays& s, double h, const Rgb& Le) {
+    const float z = float(h);
+    s.add_quad({-0.5f, -0.5f, z}, {-0.5f, 0.5f, z}, {0.5f, 0.5f, z}, {0.5f, -0.5f, z}, Rgb(0.0), Le, 1);
+}
+
+/// Largest |L / expected - 1| over the channels of the input corners `corners`.
+double worst_relative_error(const BakeResult& r, const std::vector<std::size_t>& corners, const Rgb& expected) {
+    double worst = 0.0;
+    for (const std::size_t c : corners)
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+    return worst;
+}
+
 /// Howell's factor from a point to a parallel a x b rectangle at distance c, the point under one
 /// of its corners.
 double corner_factor(double a, double b, double c) {
@@ -59,8 +73,7 @@ TEST(FinalGather, CeilingOverAnEmittersBackIsExact) {
     const double gap = 0.05, h = 1.0;
     const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
     test::SceneArrays s;
-    s.add_quad({-0.5f, -0.5f, float(h)}, {-0.5f, 0.5f, float(h)}, {0.5f, 0.5f, float(h)}, {0.5f, -0.5f, float(h)},
-               Rgb(0.0), Le, 1);  // normal -z
+    add_emitter(s, h, Le);
     const float top = float(h + gap);
     for (const auto& [x0, y0] : {std::pair{0.0f, 0.0f}, {-5.0f, 0.0f}, {-5.0f, -5.0f}, {0.0f, -5.0f}})
         s.add_quad({x0, y0, top}, {x0, y0 + 5, top}, {x0 + 5, y0 + 5, top}, {x0 + 5, y0, top}, rho);  // normal -z
@@ -68,9 +81,7 @@ TEST(FinalGather, CeilingOverAnEmittersBackIsExact) {
     const std::vector<std::size_t> over = corners_at(s, Vec3(0.0f, 0.0f, top));
     ASSERT_EQ(over.size(), 4u);
     const BakeResult r = bake(s.input(), gather_settings(0.5f, true));
-    double worst = 0.0;
-    for (const std::size_t c : over)
-        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+    const double worst = worst_relative_error(r, over, expected);
     std::printf("ceiling over the emitter's back %.6f (exact %.6f), worst relative error %.2e\n",
                 r.colors.input_corner[over[0]].g, expected.g, worst);
     EXPECT_LT(worst, 1e-3);
@@ -85,17 +96,14 @@ TEST(FinalGather, FloorUnderASquareEmitterIsExact) {
     const double h = 0.5;
     const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
     test::SceneArrays s;
-    s.add_quad({-0.5f, -0.5f, float(h)}, {-0.5f, 0.5f, float(h)}, {0.5f, 0.5f, float(h)}, {0.5f, -0.5f, float(h)},
-               Rgb(0.0), Le, 1);  // normal -z
+    add_emitter(s, h, Le);
     add_floor(s, rho);
     const Rgb expected = rho * Le * (4.0 * corner_factor(0.5, 0.5, h));
     const std::vector<std::size_t> under = corners_at(s, Vec3(0.0f));
     ASSERT_EQ(under.size(), 4u);
     for (const bool gather : {false, true}) {
         const BakeResult r = bake(s.input(), gather_settings(0.5f, gather));
-        double worst = 0.0;
-        for (const std::size_t c : under)
-            for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+        const double worst = worst_relative_error(r, under, expected);
         std::printf("gather %d: floor under the emitter %.6f (exact %.6f), worst relative error %.2e, %.3f s gather\n",
                     int(gather), r.colors.input_corner[under[0]].g, expected.g, worst, r.seconds_gather);
         if (gather) {
@@ -116,8 +124,7 @@ TEST(FinalGather, WallStandingUnderTheEmitterHidesExactlyHalfOfIt) {
     const double h = 0.5;
     const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
     test::SceneArrays s;
-    s.add_quad({-0.5f, -0.5f, float(h)}, {-0.5f, 0.5f, float(h)}, {0.5f, 0.5f, float(h)}, {0.5f, -0.5f, float(h)},
-               Rgb(0.0), Le, 1);  // normal -z
+    add_emitter(s, h, Le);
     add_floor(s, rho);
     const float x0 = -0.001f, x1 = 0.0f, y0 = -1.0f, y1 = 1.0f, z1 = 0.3f;
     const Rgb black(0.0);
@@ -133,9 +140,7 @@ TEST(FinalGather, WallStandingUnderTheEmitterHidesExactlyHalfOfIt) {
     ASSERT_EQ(lit.size(), 2u);
     for (const bool gather : {false, true}) {
         const BakeResult r = bake(s.input(), gather_settings(0.5f, gather));
-        double worst = 0.0;
-        for (const std::size_t c : lit)
-            for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+        const double worst = worst_relative_error(r, lit, expected);
         for (const Rgb& L : r.colors.input_corner)
             for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(L[k]) && L[k] >= 0.0);
         std::printf("gather %d: floor at the wall's foot %.6f (exact %.6f), worst relative error %.2e; "
@@ -165,9 +170,7 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
         settings.lights.points.push_back(lamp);
         const BakeResult r = bake(s.input(), settings);
         const Rgb expected = rho * I / (M_PI * h * h);
-        double worst = 0.0;
-        for (const std::size_t c : corners_at(s, Vec3(0.0f)))
-            for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+        const double worst = worst_relative_error(r, corners_at(s, Vec3(0.0f)), expected);
         std::printf("gather %d: floor under the lamp, worst relative error %.2e\n", int(gather), worst);
         if (gather) EXPECT_LT(worst, 1e-3);
         else EXPECT_GT(worst, 2e-2);

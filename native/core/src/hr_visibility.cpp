@@ -77,6 +77,21 @@ const Embree& embree() {
     return api;
 }
 
+/// A ray from `origin` along `direction` between t_near and t_far (flags, time and id 0).
+RTCRay make_ray(const Vec3& origin, const Vec3& direction, float t_near, float t_far) {
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = t_near;
+    ray.tfar = t_far;
+    ray.mask = 0xFFFFFFFFu;
+    return ray;
+}
+
 }  // namespace
 
 Visibility::Visibility(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 4>>& corners,
@@ -109,16 +124,7 @@ Visibility::~Visibility() {
 }
 
 bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const {
-    RTCRay ray{};  // flags, time and id 0
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = t_near;
-    ray.tfar = t_far;
-    ray.mask = 0xFFFFFFFFu;
+    RTCRay ray = make_ray(origin, direction, t_near, t_far);
 #if RADIOSITY_EMBREE_MAJOR == 4
     // Embree 4: the context became optional arguments; the defaults (incoherent rays, no filter,
     // every feature) are Embree 3's rtcInitIntersectContext defaults.
@@ -152,15 +158,7 @@ bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
 
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
     RTCRayHit query{};
-    query.ray.org_x = from.x;
-    query.ray.org_y = from.y;
-    query.ray.org_z = from.z;
-    query.ray.dir_x = direction.x;
-    query.ray.dir_y = direction.y;
-    query.ray.dir_z = direction.z;
-    query.ray.tnear = t_near;
-    query.ray.tfar = 2.0f * scene_size_ + 1.0f;
-    query.ray.mask = 0xFFFFFFFFu;
+    query.ray = make_ray(from, direction, t_near, 2.0f * scene_size_ + 1.0f);
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
 #if RADIOSITY_EMBREE_MAJOR == 4
