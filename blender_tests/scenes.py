@@ -274,7 +274,7 @@ def camera_for_cornell_box():
 
 
 def cluttered_room(blocks, size=0.02):
-    """Issue 22's room: the inside of a 2 m cube (one object 'Room', rho 0.7, normals inward),
+    """A cluttered room: the inside of a 2 m cube (one object 'Room', rho 0.7, normals inward),
     a 0.5 m square 1 cm under the ceiling emitting radiance 10 downwards ('Panel', black, 7.85 W),
     and `blocks` closed 2 cm cubes (six faces each, rho 0.7) standing on the floor in one object
     'Blocks', scattered as an artist's scatter leaves them (native/tests/test_hierarchy.cpp's

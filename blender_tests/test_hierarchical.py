@@ -302,8 +302,8 @@ def test_fog_refuses_the_method_and_changes_nothing():
 
 
 def bake_cluttered_room(blocks):
-    """Issue 22's room with `blocks` blocks baked hierarchically into copies (element size 0.1 m,
-    refinement 0.02, as the issue's Medium bake but coarser); returns the summary and the mean
+    """scenes.cluttered_room with `blocks` blocks baked hierarchically into copies (element size
+    0.1 m, refinement 0.02: Medium's, coarser); returns the summary and the mean
     light (area-weighted over the copy's faces, mean of R, G, B) of its walls and its floor."""
     scenes.clear_scene()
     scenes.cluttered_room(blocks)
@@ -327,11 +327,10 @@ def bake_cluttered_room(blocks):
 
 
 def test_a_cluttered_room_keeps_the_empty_rooms_light_and_its_power():
-    # Issue 22: 1,000 blocks of 2 cm on a 2 m room's floor left the walls 0.55x and the floor
-    # 0.64x of Cycles' light (Cycles: the walls keep 0.977x the empty room's), "nan% absorbed",
-    # NaN colours in a block and "residual 0 (converged)". Here 100 blocks (1% of the floor, a
-    # contact-cut sliver thinner than the weld among them): the walls keep the empty room's light
-    # within 3%, the power is accounted for, and nothing is NaN.
+    # Many small props on a floor barely change a room's light (Cycles: 1,000 blocks of 2 cm leave
+    # the walls 0.977x the empty room's). Here 100 blocks (1% of the floor, a contact-cut sliver
+    # thinner than the weld among them): the walls keep the empty room's light within 3%, the
+    # power is accounted for, and nothing is NaN.
     empty, empty_walls, empty_floor = bake_cluttered_room(0)
     start = time.perf_counter()
     summary, walls, floor = bake_cluttered_room(100)
