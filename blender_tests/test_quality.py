@@ -273,33 +273,38 @@ LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE = 1.5, 0.5, 1000.0
 LAMP_SCENE_HALF_DIAGONAL = 0.5 * math.sqrt(2 ** 2 + 2 ** 2 + LAMP_HEIGHT ** 2)
 
 
-def test_small_distant_lamp_sets_the_resolution():
-    # A 2 cm lamp 1.5 m over a floor. Draft's elements (5 cm) are all larger, so the lamp alone
-    # sets the resolution: it must cover Draft's 4 cells. The old fixed Draft resolution (64) gave
-    # it 0.2 cells: each floor element caught the lamp in one cell or missed it.
+def test_small_distant_lamp_is_lit_directly():
+    # A 2 cm lamp 1.5 m over a floor. Draft's elements (5 cm) are all larger; a hemi-cube at
+    # their resolution sees the lamp as a fraction of a cell, so each floor element would catch it in
+    # one cell or miss it. The lamp's elements light the floor directly instead (analytic factors
+    # and shadow rays), and the resolution stays the elements' own.
     side = 0.02
     scenes.clear_scene()
     obj, lamp = scenes.small_lamp_over_floor(side, LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE)
     settings = bpy.context.scene.radiosity
     settings.quality = "DRAFT"
-    # What the resolution does to the solve: the final gather would light the corners from the lamp
+    # What the solve does with the lamp: the final gather would light the corners from the lamp
     # itself, whatever the hemi-cubes caught of it.
     settings.final_gather = False
-    resolution = even_resolution(LAMP_SCENE_HALF_DIAGONAL, side ** 2, 4)
+    choice = job_for(bpy.context.scene).choice
+    resolution = choice.resolution
+    assert resolution < even_resolution(LAMP_SCENE_HALF_DIAGONAL, side ** 2, 4), choice
+    assert choice.direct_emitters == 2, choice  # the lamp's two sides
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
-    chosen = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
-    assert ("Hemi-cube resolution %d: the smallest tenth of the emitting elements cover 4 cells" % resolution
-            in settings.last_accuracy), settings.last_accuracy
-    element_size = job_for(bpy.context.scene).choice.element_size
+    direct = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    reason = "Hemi-cube resolution %d: the smallest tenth of the elements cover 4 cells from half the scene's " \
+             "diagonal; 2 emitting elements smaller than" % resolution
+    assert reason in settings.last_accuracy, settings.last_accuracy
+    element_size = choice.element_size
 
-    # The same elements at the old fixed resolution, through the panel's Custom settings.
+    # The same elements and resolution through the hemi-cube alone (Custom lights nothing directly).
     settings.quality = "CUSTOM"
-    settings.element_size, settings.hemicube_resolution, settings.tolerance = element_size, 64, 1e-3
+    settings.element_size, settings.hemicube_resolution, settings.tolerance = element_size, resolution, 1e-3
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
-    fixed = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
-    print("2 cm lamp at 1.5 m, Draft: resolution %d, %.1f%% RMS against the direct light; resolution 64: %.1f%%"
-          % (resolution, 100 * chosen, 100 * fixed))
-    assert chosen < 0.2 and fixed > 1.0, (chosen, fixed)
+    hemicube = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    print("2 cm lamp at 1.5 m, Draft at resolution %d: %.2f%% RMS against the direct light lit directly, "
+          "%.1f%% through the hemi-cube" % (resolution, 100 * direct, 100 * hemicube))
+    assert direct < 0.01 and hemicube > 0.2, (direct, hemicube)
 
     # The batch command chooses and reports the same.
     path = os.path.join(args.work, "small_lamp.blend")
@@ -309,27 +314,35 @@ def test_small_distant_lamp_sets_the_resolution():
                           "import bake_radiosity.cli as c; c.main()", "--", "--output", path, "--quality", "DRAFT"],
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
-    assert "Hemi-cube resolution %d: the smallest tenth of the emitting elements" % resolution in run.stdout, run.stdout
+    assert reason in run.stdout, run.stdout
 
 
 def test_tiny_lamp_past_the_cap_adds_rotations():
-    # A 5 mm lamp would need resolution 1281 for Draft's 4 cells; capped at 1024, hemi-cubes turned
-    # about the normal make up for it: (1281 / 1024)^2.8 = 1.9, so 2 (docs/accuracy.md).
+    # A 5 mm lamp would need resolution 1281 for Draft's 4 cells. Lit directly, it needs none of
+    # that; when the pairs it would light are over the budget, it sets the resolution: capped at
+    # 1024, hemi-cubes turned about the normal make up for it: (1281 / 1024)^2.8 = 1.9, so 2
+    # (docs/accuracy.md).
     side = 0.005
     scenes.clear_scene()
     obj, lamp = scenes.small_lamp_over_floor(side, LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE)
     bpy.context.scene.radiosity.quality = "DRAFT"
     needed = 2 * LAMP_SCENE_HALF_DIAGONAL * math.sqrt(4 / side ** 2)
     rotations = math.ceil((needed / 1024) ** 2.8)
-    choice = job_for(bpy.context.scene).choice
-    assert (choice.resolution, choice.hemicube_rotations, rotations) == (1024, 2, 2), (choice, needed)
-    summary = addon.bake(bpy.context.scene)
+    direct = addon.bake(bpy.context.scene)
+    direct_error = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
+    assert direct["resolution"] < 1024 and direct["hemicube_rotations"] == 1, direct
+    with harness.patched_setting("DIRECT_EMITTER_PAIRS", 0):
+        choice = job_for(bpy.context.scene).choice
+        assert (choice.resolution, choice.hemicube_rotations, rotations) == (1024, 2, 2), (choice, needed)
+        summary = addon.bake(bpy.context.scene)
     error = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
-    print("5 mm lamp at 1.5 m, Draft: resolution %d x %d rotations (%s), %.1f%% RMS against the direct light, "
-          "%.0f s" % (summary["resolution"], summary["hemicube_rotations"], summary["resolution_reason"], 100 * error,
-                      sum(summary["seconds"].values())))
+    for name, s, e in (("lit directly", direct, direct_error), ("through the hemi-cube", summary, error)):
+        print("5 mm lamp at 1.5 m, Draft, %s: resolution %d x %d rotations (%s), %.1f%% RMS against the direct "
+              "light, %.1f s" % (name, s["resolution"], s["hemicube_rotations"], s["resolution_reason"], 100 * e,
+                                 sum(s["seconds"].values())))
     assert summary["hemicube_rotations"] == 2 and "capped at 1024" in summary["resolution_reason"], summary
     assert error < 0.15, error
+    assert direct_error < 0.01, direct_error
 
 
 def cycles_corners(obj, samples, seed):
@@ -403,5 +416,5 @@ def test_thin_quads_are_cut():
 
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
             test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one,
-            test_small_distant_lamp_sets_the_resolution, test_tiny_lamp_past_the_cap_adds_rotations,
+            test_small_distant_lamp_is_lit_directly, test_tiny_lamp_past_the_cap_adds_rotations,
             test_near_field_at_medium_and_high, test_thin_quads_are_cut)

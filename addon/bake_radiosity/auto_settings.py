@@ -55,6 +55,12 @@ PRESETS = {
 # Draft 5.80% -> 1.28%, Medium 2.83% -> 1.00%, High 2.26% -> 0.76% RMS at 1024 rays, for 0.2 s
 # more at Draft and about 5% more time at Medium.
 GATHER_RAYS = 1024
+# Emitting elements smaller than the resolution resolves (fewer than the preset's cells from half
+# the scene's diagonal) light every element directly instead of driving the resolution of the
+# whole bake: a 1 cm emitter in a 2 m room asked for 850. Each costs one analytic factor and a few
+# shadow rays per element, so at most this many emitter-element pairs take that path; beyond it
+# the largest of them go back to the hemi-cube.
+DIRECT_EMITTER_PAIRS = 20_000_000
 
 
 @dataclass(frozen=True)
@@ -74,11 +80,14 @@ class Choice:
     resolution_reason: str      # why this resolution, in words for the summary
     near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
+    direct_emitter_area: float = 0.0  # emitting elements smaller than this light elements directly
+    direct_emitters: int = 0    # how many emitting elements that is
 
     def stability_keywords(self):
         """The stability and output settings _core.bake takes for this choice."""
         keywords = {"max_element_aspect": self.max_element_aspect, "hemicube_rotations": self.hemicube_rotations,
-                    "near_field": self.near_field, "final_gather": self.gather_rays > 0}
+                    "near_field": self.near_field, "final_gather": self.gather_rays > 0,
+                    "direct_emitter_area": self.direct_emitter_area}
         if self.gather_rays > 0:
             keywords["gather_rays"] = self.gather_rays
         if self.method == "gauss_seidel":
@@ -100,15 +109,45 @@ class Resolution:
     resolution: int
     rotations: int
     reason: str
+    direct_emitter_area: float = 0.0
+    direct_emitters: int = 0
+
+
+def direct_emitter_area(layout, emitting, resolution, preset):
+    """Emitting elements smaller than what `resolution` resolves (`_core.resolved_area`) light the
+    elements directly: (area bound, how many), the smallest first within DIRECT_EMITTER_PAIRS."""
+    area = layout["element_area"]
+    bound = native.core().resolved_area(layout["element_vertices"], resolution, preset.cells)
+    small = np.sort(area[emitting & (area < bound)])
+    most = DIRECT_EMITTER_PAIRS // max(1, len(area))
+    if len(small) > most:  # the largest of them go back to the hemi-cube
+        bound = float(small[most]) if most > 0 else 0.0
+        small = small[small < bound]
+    return (float(bound), len(small)) if len(small) else (0.0, 0)
 
 
 def preset_resolution(layout, emitting, preset, zonal=False):
     """The Resolution at which the smallest tenth of the elements, and of the emitting elements (a
     small lamp aliases most visibly: blotchy light), cover `preset.cells` cells seen from half the
-    scene's diagonal (`_core.recommended_resolution`). Capped at 1024 it adds rotations, except in
-    the zonal bake, which takes none."""
+    scene's diagonal (`_core.recommended_resolution`). Emitting elements smaller than that resolution
+    resolves light the elements directly instead (direct_emitter_area; not in the zonal bake).
+    Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
     area, vertices = layout["element_area"], layout["element_vertices"]
+    direct = (0.0, 0)
+    if not zonal and emitting.any():
+        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(area, vertices, preset.cells),
+                                     preset)
+        emitting = emitting & ~(area < direct[0])
+    found = _resolution_for_groups(core, area, vertices, emitting, preset, zonal)
+    if not direct[1]:
+        return found
+    reason = found.reason + "; %d emitting element%s smaller than %.3g cm\u00b2 light the scene directly" % (
+        direct[1], "" if direct[1] == 1 else "s", direct[0] * 1e4)
+    return Resolution(found.resolution, found.rotations, reason, *direct)
+
+
+def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
     groups = [("elements", area)] + ([("emitting elements", area[emitting])] if emitting.any() else [])
     wanted = [(core.recommended_resolution(a, vertices, preset.cells), name, a) for name, a in groups]
     resolution, name, driving = max(wanted, key=lambda w: w[0])
@@ -179,7 +218,8 @@ def choose(settings, exported, zonal=False):
                   resolution_reason=chosen.reason,
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=preset is not None and preset.near_field and method != "hierarchical" and not zonal,
-                  gather_rays=GATHER_RAYS if gathers else 0)
+                  gather_rays=GATHER_RAYS if gathers else 0,
+                  direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 
 def warnings_for(choice):

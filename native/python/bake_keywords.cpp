@@ -67,6 +67,7 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     seconds["solve"] = result.seconds_solve;
     seconds["interpolate"] = result.seconds_interpolate;
     seconds["gather"] = result.seconds_gather;
+    seconds["small_emitters"] = result.seconds_direct_emitters;
 
     add_elements(result.build, out);
     add_surface_solution(result.build.elements, result.solve.radiance, result.colors, out);
@@ -79,6 +80,7 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;
     out["seconds"] = seconds;
+    if (result.direct_emitters > 0) out["direct_emitters"] = result.direct_emitters;
     if (result.gathered_points + result.buried_points > 0) {  // the final gather ran
         py::dict gather;
         gather["points"] = result.gathered_points;

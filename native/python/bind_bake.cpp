@@ -22,7 +22,7 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      std::size_t matrix_budget_bytes,
                      const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
                      std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
-                     int gather_shadow_rays) {
+                     int gather_shadow_rays, float direct_emitter_area) {
     const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
@@ -37,6 +37,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.final_gather.enabled = final_gather;
     settings.final_gather.rays = gather_rays;
     settings.final_gather.shadow_rays = gather_shadow_rays;
+    if (!(direct_emitter_area >= 0.0f)) throw InputError("direct_emitter_area must be >= 0");
+    settings.direct_emitter_area = direct_emitter_area;
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
@@ -69,21 +71,32 @@ py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& fac
     return out;
 }
 
-int recommended_resolution_arrays(const Array<float>& element_area, const Array<float>& element_vertices,
-                                  double cells) {
-    require_shape(element_area, "element_area", -1, 0);
+/// Elements with only their vertices: recommended_resolution and resolved_area read the areas (none
+/// here), the count (size() is centre.size()) and the vertices' bounding box.
+Elements vertex_layout(const Array<float>& element_vertices) {
     require_shape(element_vertices, "element_vertices", -1, 3);
-    if (!(cells > 0.0)) throw InputError("cells must be > 0");
-    // recommended_resolution reads only the count (size() is centre.size()), the areas and the
-    // vertices' bounding box.
     Elements elements;
-    const float* area = element_area.data();
-    elements.area.assign(area, area + element_area.shape(0));
-    elements.centre.resize(elements.area.size());
     const float* v = element_vertices.data();
     for (py::ssize_t i = 0; i < element_vertices.shape(0); ++i)
         elements.vertices.emplace_back(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    return elements;
+}
+
+int recommended_resolution_arrays(const Array<float>& element_area, const Array<float>& element_vertices,
+                                  double cells) {
+    require_shape(element_area, "element_area", -1, 0);
+    if (!(cells > 0.0)) throw InputError("cells must be > 0");
+    Elements elements = vertex_layout(element_vertices);
+    const float* area = element_area.data();
+    elements.area.assign(area, area + element_area.shape(0));
+    elements.centre.resize(elements.area.size());
     return recommended_resolution(elements, cells);
+}
+
+double resolved_area_arrays(const Array<float>& element_vertices, int resolution, double cells) {
+    if (!(cells > 0.0)) throw InputError("cells must be > 0");
+    if (resolution < 1) throw InputError("resolution must be >= 1");
+    return resolved_area(vertex_layout(element_vertices), resolution, cells);
 }
 
 }  // namespace
@@ -100,7 +113,8 @@ void bind_bake(py::module_& m) {
           "progress"_a = py::none(), "near_field"_a = false, "over_relaxation"_a = 1.0,
           "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1,
           "final_gather"_a = false, "gather_rays"_a = FinalGatherSettings().rays,
-          "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays);
+          "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays,
+          "direct_emitter_area"_a = BakeSettings().direct_emitter_area);
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
@@ -113,6 +127,10 @@ void bind_bake(py::module_& m) {
           "Even hemi-cube resolution in [32, 1024] at which the 10th percentile of element_area, seen head-on "
           "from half the diagonal of element_vertices' bounding box, covers `cells` cells: 2 d sqrt(cells / A).",
           "element_area"_a, "element_vertices"_a, "cells"_a = 8.0);
+    m.def("resolved_area", &resolved_area_arrays,
+          "The area an element must have to cover `cells` cells of a hemi-cube of `resolution`, seen head-on from "
+          "half the diagonal of element_vertices' bounding box: cells (2 d / N)^2 (recommended_resolution inverted).",
+          "element_vertices"_a, "resolution"_a, "cells"_a);
     m.attr("DEFAULT_MATRIX_BUDGET_BYTES") = BakeSettings().matrix_budget_bytes;
 }
 

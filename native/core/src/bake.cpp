@@ -3,6 +3,7 @@
 #include "radiosity/bake.h"
 
 #include "final_gather.h"
+#include "small_emitters.h"
 
 #include <algorithm>
 #include <chrono>
@@ -34,13 +35,29 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
 
     // The polygons' own emission, before the lamps' first reflection joins it (the final gather
     // counts emission as direct light and everything else the solve found as indirect).
-    const std::vector<Rgb> emitted = settings.final_gather.enabled ? elements.emission : std::vector<Rgb>();
+    const std::vector<Rgb> emitted = elements.emission;
     start = Clock::now();
     if (!settings.lights.empty()) {
         const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, progress);
         for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
     }
     result.seconds_lights = seconds_since(start);
+
+    // Small emitters light every element directly; the solve carries only the light reflected
+    // after that, so their own emission leaves it until the solve is done.
+    std::vector<int32_t> small;
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        if (elements.area[e] < settings.direct_emitter_area && std::max({emitted[e].r, emitted[e].g, emitted[e].b}) > 0.0)
+            small.push_back(int32_t(e));
+    std::vector<Rgb> small_light;
+    if (!small.empty()) {
+        start = Clock::now();
+        small_light = detail::small_emitter_light(elements, small, emitted, progress);
+        for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * small_light[e];
+        for (const int32_t j : small) elements.emission[j] -= emitted[j];
+        result.direct_emitters = small.size();
+        result.seconds_direct_emitters = seconds_since(start);
+    }
 
     // Stored, F is computed in parallel and read cheaply by every sweep or shot; progressive
     // refinement also holds F^T to shoot exact columns. Beyond the budget, rows are rendered on
@@ -65,6 +82,13 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
     }
     result.seconds_solve = result.solve.seconds;
+    // Small emitters shine again; the first reflection of their light stays out of the emission
+    // reported, so that the energy balance counts it as light received (absorbed or reflected).
+    for (const int32_t j : small) {
+        result.solve.radiance[j] += emitted[j];
+        elements.emission[j] += emitted[j];
+    }
+    for (std::size_t e = 0; e < small_light.size(); ++e) elements.emission[e] -= elements.reflectance[e] * small_light[e];
 
     start = Clock::now();
     result.colors = interpolate_corners(elements, result.solve.radiance, input.material, settings.hard_edge_angle);

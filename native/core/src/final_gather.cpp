@@ -6,6 +6,7 @@
 #include "lamp_points.h"
 #include "parallel_rows.h"
 #include "radiosity/near_field.h"
+#include "shadow_ray.h"
 #include "stratified.h"
 #include "weld.h"
 
@@ -169,10 +170,10 @@ private:
                 const double kernel = r2 > 0.0f ? double(std::max(0.0f, glm::dot(normal, d)) *
                                                          std::max(0.0f, -glm::dot(Vec3(source.normal), d))) / (r2 * r2)
                                                  : 0.0;
-                const bool unhidden = clear_to(origin, points[k], source);
-                clear += unhidden;
+                const bool seen_clear = unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
+                clear += seen_clear;
                 total += kernel;
-                if (unhidden) visible += kernel;
+                if (seen_clear) visible += kernel;
             }
             const double share_seen = total > 0.0 ? visible / total : double(clear) / (grid * grid);
             light += source.radiance * (s.factor * share_seen);
@@ -191,30 +192,6 @@ private:
         const Rgb* c = &corner_field_[4 * h];
         if (elements_.is_triangle(h)) return (1.0 - u - v) * c[0] + u * c[1] + v * c[2];
         return (1.0 - u) * (1.0 - v) * c[0] + u * (1.0 - v) * c[1] + u * v * c[2] + (1.0 - u) * v * c[3];
-    }
-
-    /// Whether nothing hides point `to` of `target` from `from`. Hits in the target's own plane do
-    /// not count: a ray that grazes that plane (from a corner to the wall beside it) meets it a
-    /// little early in float arithmetic, and nothing in that plane can hide a point of it.
-    bool clear_to(const Vec3& from, const Vec3& to, const Emitter& target) const {
-        const Vec3 d = to - from;
-        const float length = glm::length(d);
-        if (!(length > 0.0f)) return true;
-        const Vec3 direction = d / length;
-        const float end = length * (1.0f - 1e-4f) - visibility_.gap();
-        const Vec3 target_normal(target.normal);
-        const float tolerance = 1e-5f * scene_size_ + 1e-4f * length;
-        float t = std::max(visibility_.gap(), 1e-6f);
-        for (int step = 0; step < 16; ++step) {
-            const hr::Visibility::Hit hit = visibility_.first_hit(from, direction, t);
-            if (hit.patch < 0 || !(hit.distance < end)) return true;
-            const Vec3 at = from + hit.distance * direction;
-            const bool in_plane = std::abs(glm::dot(elements_.normal[hit.patch], target_normal)) > 0.9999f &&
-                                  std::abs(glm::dot(at - to, target_normal)) < tolerance;
-            if (!in_plane) return false;
-            t = std::nextafter(hit.distance, std::numeric_limits<float>::max());
-        }
-        return true;
     }
 
     const Elements& elements_;

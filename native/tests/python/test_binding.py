@@ -75,6 +75,19 @@ class FurnaceTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "gather_rays"):
             _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_rays=0)
 
+    def test_emitters_lit_directly_meet_the_furnace(self):
+        """Every element of the box is smaller than direct_emitter_area, so each lights the others
+        directly (analytic factors) instead of through the hemi-cube: the same L = E / (1 - rho)."""
+        rho, emitted = 0.6, 2.0
+        result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=16,
+                            tolerance=1e-7, direct_emitter_area=1.0)
+        self.assertEqual(result["direct_emitters"], result["elements"])
+        np.testing.assert_allclose(fronts(result), emitted / (1.0 - rho), rtol=1e-3)
+        np.testing.assert_allclose(result["element_emission"], emitted)  # as given: the first reflection is not emission
+        self.assertNotIn("direct_emitters", _core.bake(*box_arrays(), element_size=0.5, resolution=16))
+        with self.assertRaisesRegex(ValueError, "direct_emitter_area"):
+            _core.bake(*box_arrays(), element_size=0.5, resolution=16, direct_emitter_area=-1.0)
+
     def test_every_method_agrees(self):
         arrays = box_arrays(rho=0.5, emitted=1.0)
         for method in ("gauss_seidel", "jacobi", "progressive"):
@@ -100,7 +113,7 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_polygon"].shape, (elements,))
         self.assertAlmostEqual(float(fronts(result, "element_area").sum()), 6.0, places=5)
         self.assertEqual(set(result["seconds"]),
-                         {"elements", "lights", "form_factors", "solve", "interpolate", "gather"})
+                         {"elements", "lights", "small_emitters", "form_factors", "solve", "interpolate", "gather"})
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()

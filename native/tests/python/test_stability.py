@@ -130,6 +130,19 @@ class RecommendedResolutionTest(unittest.TestCase):
             self.assertEqual(_core.recommended_resolution(layout["element_area"], layout["element_vertices"],
                                                           cells=2.0), max(32, 2 * math.ceil(exact / 4)))
 
+    def test_resolved_area_inverts_the_resolution(self):
+        """A = cells (2 d / N)^2: at N = 50 the unit cube's 10 cm elements (0.01 m^2) are resolved with
+        the 8 cells they were chosen for, to N's rounding (exact N = 48.99)."""
+        vertices = self.cube(0.1)["element_vertices"]
+        d = 0.5 * math.sqrt(3.0)
+        for resolution, cells in ((50, 8.0), (128, 6.0)):
+            self.assertAlmostEqual(_core.resolved_area(vertices, resolution, cells),
+                                   cells * (2 * d / resolution) ** 2, places=9)
+        self.assertLess(_core.resolved_area(vertices, 50, 8.0), 0.01)
+        self.assertGreater(_core.resolved_area(vertices, 48, 8.0), 0.01)
+        with self.assertRaises(_core.InputError):
+            _core.resolved_area(vertices, 0, 8.0)
+
     def test_tenth_percentile_clamps_and_errors(self):
         layout = self.cube(0.1)
         area, vertices = layout["element_area"], layout["element_vertices"]

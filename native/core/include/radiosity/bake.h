@@ -50,6 +50,11 @@ struct BakeSettings {
     Lights lights;
     /// The final gather at the output corners (off by default).
     FinalGatherSettings final_gather;
+    /// Emitting elements smaller than this (square metres; 0 = none) light every element directly,
+    /// as sources with their true area and shape, instead of through the hemi-cube, which would
+    /// need a resolution that resolves them (small_emitters.h). Their own emission is left out of
+    /// the solve and added back to their radiance after it.
+    float direct_emitter_area = 0.0f;
 };
 
 struct BakeResult {
@@ -63,6 +68,8 @@ struct BakeResult {
     double seconds_gather = 0;          ///< the final gather (0 when off)
     std::size_t gathered_points = 0;    ///< output vertices whose colour the final gather computed
     std::size_t buried_points = 0;      ///< output vertices inside other geometry: interpolated colour kept
+    std::size_t direct_emitters = 0;    ///< emitting elements lit directly (direct_emitter_area)
+    double seconds_direct_emitters = 0; ///< their direct light on every element
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at

@@ -19,4 +19,9 @@ int resolution_for(double area, double distance, double cells);
 /// (half the diagonal of the elements' bounding box).
 int recommended_resolution(const Elements& elements, double cells = 8.0);
 
+/// The smallest area that resolution N resolves as recommended_resolution judges it: an element of
+/// it, seen head-on from half the diagonal of the elements' bounding box, covers `cells` cells,
+/// A = cells (2 d / N)^2. Smaller emitters are better lit directly (BakeSettings::direct_emitter_area).
+double resolved_area(const Elements& elements, int resolution, double cells);
+
 }  // namespace radiosity
