@@ -83,7 +83,8 @@ class FurnaceTest(unittest.TestCase):
                             tolerance=1e-7, direct_emitter_area=1.0)
         self.assertEqual(result["direct_emitters"], result["elements"])
         np.testing.assert_allclose(fronts(result), emitted / (1.0 - rho), rtol=1e-3)
-        np.testing.assert_allclose(result["element_emission"], emitted)  # as given: the first reflection is not emission
+        # Emission as given: the first reflection of their light is light received, not emission.
+        np.testing.assert_allclose(result["element_emission"], emitted)
         self.assertNotIn("direct_emitters", _core.bake(*box_arrays(), element_size=0.5, resolution=16))
         with self.assertRaisesRegex(ValueError, "direct_emitter_area"):
             _core.bake(*box_arrays(), element_size=0.5, resolution=16, direct_emitter_area=-1.0)
