@@ -414,7 +414,32 @@ def test_thin_quads_are_cut():
     assert cut["converged"] and not cut["warnings"], cut
 
 
+def test_an_l_shaped_rug_does_not_set_the_resolution():
+    # A 6-corner L-shaped rug (1.2 m and 0.4 m arms, 0.4 m wide) on the floor of the 2 m room: its
+    # convex pieces are cut at about the preset's element size, so the resolution, the element count
+    # and the time stay about the room's own (ear triangles cut by one count for all: 1,600 rug
+    # elements and resolution 426 at Medium, the bake 5 times as long).
+    scenes.clear_scene()
+    scenes.cluttered_room(0)
+    settings = bpy.context.scene.radiosity
+    settings.quality = "MEDIUM"
+    without = job_for(bpy.context.scene).choice
+    z = 0.005
+    outline = np.array([(0.4, 0.4, z), (1.6, 0.4, z), (1.6, 0.8, z), (0.8, 0.8, z), (0.8, 1.6, z), (0.4, 1.6, z)])
+    rug = scenes.mesh_object("Rug", [(outline, np.arange(6)[None, :], 0)], [scenes.diffuse("Red", (0.6, 0.1, 0.1))])
+    rug_area = 1.2 * 0.4 + 0.4 * 0.8
+    choice = job_for(bpy.context.scene).choice
+    squares = math.ceil(rug_area / choice.element_size ** 2)
+    print("L-shaped rug at Medium: resolution %d (%d without it), %d elements (%d without it; the rug's area is %d "
+          "element squares)" % (choice.resolution, without.resolution, choice.elements, without.elements, squares))
+    assert choice.resolution == without.resolution, (choice, without)
+    assert choice.elements - without.elements <= 2 * squares, (choice, without)
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    colors = harness.corner_colors(rug.data, "Radiosity")
+    assert np.isfinite(colors).all() and colors[:, 0].min() > 0.0, colors
+
+
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
             test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one,
             test_small_distant_lamp_is_lit_directly, test_tiny_lamp_past_the_cap_adds_rotations,
-            test_near_field_at_medium_and_high, test_thin_quads_are_cut)
+            test_near_field_at_medium_and_high, test_thin_quads_are_cut, test_an_l_shaped_rug_does_not_set_the_resolution)

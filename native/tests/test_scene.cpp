@@ -83,7 +83,8 @@ TEST(Scene, TrianglesSubdivideRegularly) {
     }
 }
 
-TEST(Scene, ConcaveNgonIsSplitIntoTrianglesInsideIt) {
+TEST(Scene, ConcaveNgonIsSplitIntoConvexPiecesInsideIt) {
+    // The L of three unit squares: two convex quads, each cut by its own counts.
     SceneArrays s;
     s.add_polygon(l_shape(), Rgb(0.5), Rgb(0));
     for (float max_edge : {0.0f, 0.3f}) {
@@ -91,14 +92,37 @@ TEST(Scene, ConcaveNgonIsSplitIntoTrianglesInsideIt) {
         EXPECT_TRUE(r.skipped.empty());
         EXPECT_NEAR(total_area(r.elements), 3.0, 1e-5);
         for (std::size_t e = 0; e < r.elements.size(); ++e) {
-            EXPECT_TRUE(r.elements.is_triangle(e));
+            EXPECT_FALSE(r.elements.is_triangle(e));
             EXPECT_NEAR(r.elements.normal[e].z, 1.0f, 1e-6f);  // none flipped: all inside the outline
             const Vec3 c = r.elements.centre[e];
             EXPECT_FALSE(c.x > 1.0f && c.y > 1.0f) << "element outside the L at " << c.x << ", " << c.y;
         }
-        if (max_edge > 0.0f) EXPECT_LE(longest_edge(r.elements), max_edge * (1.0f + 1e-5f));
-        else EXPECT_EQ(r.elements.size(), 4u);
+        if (max_edge > 0.0f) {
+            EXPECT_LE(longest_edge(r.elements), max_edge * (1.0f + 1e-5f));
+            // Trapezoids cut along the diagonal from the inner corner: 5 x 7 each, against 34
+            // squares of 0.3 m covering 3 m^2.
+            EXPECT_EQ(r.elements.size(), 70u);
+        } else {
+            EXPECT_EQ(r.elements.size(), 2u);
+        }
     }
+}
+
+TEST(Scene, AShortArmIsNotCutAsFinelyAsTheLongOne) {
+    // An L-shaped rug, a 1.2 m arm and a 0.4 m one, 0.4 m wide: at 6.25 cm every element is near
+    // that size (one count for all its ear triangles cut the short arm's 0.4 m edges 20 times).
+    SceneArrays s;
+    s.add_polygon({{0, 0, 0}, {1.2f, 0, 0}, {1.2f, 0.4f, 0}, {0.4f, 0.4f, 0}, {0.4f, 1.2f, 0}, {0, 1.2f, 0}}, Rgb(0.5),
+                  Rgb(0));
+    const float max_edge = 0.0625f;
+    const BuildResult r = build_elements(s.input(), max_edge);
+    EXPECT_NEAR(total_area(r.elements), 0.8, 1e-5);
+    // Two convex pieces (trapezoids, cut along the diagonal from the inner corner): about twice the
+    // elements of max_edge squares covering the area (205), none smaller than 0.4 of such a square.
+    EXPECT_LE(r.elements.size(), 2u * 205u);
+    float smallest = 1e9f;
+    for (const float a : r.elements.area) smallest = std::min(smallest, a);
+    EXPECT_GT(smallest, 0.4f * max_edge * max_edge);
 }
 
 TEST(Scene, DegeneratePolygonsAreReportedNotUsed) {

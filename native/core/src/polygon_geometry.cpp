@@ -55,6 +55,44 @@ std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const D
     return triangles;
 }
 
+std::vector<std::vector<int>> convex_pieces(const std::vector<DVec3>& p, const DVec3& normal) {
+    std::vector<std::vector<int>> pieces;
+    for (const auto& t : triangulate(p, normal)) pieces.push_back({t[0], t[1], t[2]});
+    // The piece holding the directed edge (u, v), or -1.
+    auto holding = [&](int u, int v) {
+        for (std::size_t k = 0; k < pieces.size(); ++k) {
+            const std::vector<int>& q = pieces[k];
+            for (std::size_t i = 0; i < q.size(); ++i)
+                if (q[i] == u && q[(i + 1) % q.size()] == v) return int(k);
+        }
+        return -1;
+    };
+    std::vector<DVec3> points;
+    for (std::size_t a = 0; a < pieces.size(); ++a) {
+        for (std::size_t i = 0; i < pieces[a].size(); ++i) {
+            const std::vector<int>& A = pieces[a];
+            const int u = A[i], v = A[(i + 1) % A.size()];
+            const int b = holding(v, u);
+            if (b < 0 || std::size_t(b) == a) continue;
+            // A from v round to u, then B's corners strictly between u and v.
+            std::vector<int> joined;
+            for (std::size_t k = 0; k < A.size(); ++k) joined.push_back(A[(i + 1 + k) % A.size()]);
+            const std::vector<int>& B = pieces[std::size_t(b)];
+            std::size_t at = 0;
+            while (B[at] != u) ++at;
+            for (std::size_t k = 1; k + 1 < B.size(); ++k) joined.push_back(B[(at + k) % B.size()]);
+            points.clear();
+            for (const int q : joined) points.push_back(p[std::size_t(q)]);
+            if (!is_convex(points, normal)) continue;
+            pieces[a] = joined;
+            pieces.erase(pieces.begin() + b);
+            if (std::size_t(b) < a) --a;
+            i = std::size_t(-1);  // look at the joined piece's edges again
+        }
+    }
+    return pieces;
+}
+
 SliverSplit split_sliver(const DVec3& p0, const DVec3& p1, const DVec3& p2, float max_aspect) {
     SliverSplit split;
     if (!(max_aspect >= 1.0f)) return split;

@@ -20,6 +20,11 @@ bool is_convex(const std::vector<DVec3>& p, const DVec3& normal);
 /// Ear clipping in the polygon's plane; handles concave simple polygons. Triangles are CCW about `normal`.
 std::vector<std::array<int, 3>> triangulate(const std::vector<DVec3>& p, const DVec3& normal);
 
+/// A simple polygon as convex pieces (Hertel & Mehlhorn 1983): the ear clipping's triangles, joined
+/// across each diagonal whose two pieces stay convex together. Each piece lists corner indices of
+/// `p`, CCW about `normal`; a convex polygon is one piece.
+std::vector<std::vector<int>> convex_pieces(const std::vector<DVec3>& p, const DVec3& normal);
+
 /// How a sliver triangle is cut into strips (scene.cpp). A strip runs from an apex to its short
 /// opposite edge, cut across by lines parallel to that edge.
 struct SliverSplit {

@@ -19,6 +19,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace radiosity {
@@ -147,16 +148,17 @@ private:
         return static_cast<int32_t>(out_.vertices.size()) - 1;
     }
 
-    /// The n + 1 vertices from corner i to corner j, created on first use.
+    /// The n + 1 vertices from corner i to corner j, created on first use (a diagonal between two
+    /// convex pieces cut by different counts has a set for each).
     std::vector<int32_t> edge(int i, int j, int n) {
         const bool flip = i > j;
-        const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+        const auto key = std::make_tuple(std::min(i, j), std::max(i, j), n);
         auto found = edges_.find(key);
         if (found == edges_.end()) {
-            const Vec3 from(p_[key.first]), to(p_[key.second]);
+            const Vec3 from(p_[std::get<0>(key)]), to(p_[std::get<1>(key)]);
             std::vector<int32_t> v(n + 1);
-            v[0] = corner_[key.first];
-            v[n] = corner_[key.second];
+            v[0] = corner_[std::get<0>(key)];
+            v[n] = corner_[std::get<1>(key)];
             for (int k = 1; k < n; ++k) v[k] = add_vertex(DVec3(symmetric_lerp(from, to, k, n)));
             found = edges_.emplace(key, std::move(v)).first;
         }
@@ -203,7 +205,7 @@ private:
     int32_t polygon_;
     Rgb rho_, emitted_;
     std::vector<int32_t> corner_;
-    std::map<std::pair<int, int>, std::vector<int32_t>> edges_;
+    std::map<std::tuple<int, int, int>, std::vector<int32_t>> edges_;
 };
 
 /// Reads polygon f's corners into p and its unit normal, or returns why it cannot be used.
@@ -228,6 +230,14 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
     normal = glm::normalize(twice_area);
     return std::nullopt;
 }
+
+/// A convex piece of a concave polygon: its corners (indices of the polygon's), and how it is cut:
+/// a quad into nu x nv, anything else as triangles of its corners, each into nu^2.
+struct Piece {
+    std::vector<int> corners;
+    std::vector<std::array<int, 3>> triangles;
+    double nu, nv;
+};
 
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
@@ -291,15 +301,46 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
         check_cap(nu * nv);
         build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
     } else {
-        // Concave quads and n-gons: ear clipping, then one count for all triangles so that they
-        // share the vertices on their common diagonals.
-        const auto triangles = detail::triangulate(p, normal);
-        double n = 1.0;
-        for (const auto& t : triangles)
-            n = std::max({n, segments(length(t[0], t[1]), max_edge), segments(length(t[1], t[2]), max_edge),
-                          segments(length(t[2], t[0]), max_edge)});
-        check_cap(double(triangles.size()) * n * n);
-        for (const auto& t : triangles) build.triangle(t[0], t[1], t[2], static_cast<int>(n));
+        // Concave quads and n-gons: convex pieces, each cut by its own counts (a short piece is not
+        // cut as finely as the longest edge of the whole asks). Pieces meet along diagonals; where
+        // their counts differ, each keeps its own vertices there (T-vertices inside one plane).
+        std::vector<Piece> pieces;
+        double total = 0.0;
+        for (const std::vector<int>& corners : detail::convex_pieces(p, normal)) {
+            Piece piece{corners, {}, 1.0, 1.0};
+            const int m = int(corners.size());
+            auto edge_length = [&](int i, int j) { return length(corners[i % m], corners[j % m]); };
+            if (m == 4) {
+                piece.nu = std::max(segments(edge_length(0, 1), max_edge), segments(edge_length(3, 2), max_edge));
+                piece.nv = std::max(segments(edge_length(0, 3), max_edge), segments(edge_length(1, 2), max_edge));
+                limit_aspect(std::max(edge_length(0, 1), edge_length(3, 2)), std::max(edge_length(0, 3), edge_length(1, 2)),
+                             limits.max_aspect, piece.nu, piece.nv);
+                total += piece.nu * piece.nv;
+            } else {
+                if (m == 3) {
+                    piece.triangles.push_back({0, 1, 2});
+                } else {  // a convex n-gon: its own ear clipping
+                    std::vector<DVec3> q;
+                    for (const int c : corners) q.push_back(p[std::size_t(c)]);
+                    piece.triangles = detail::triangulate(q, normal);
+                }
+                for (const auto& t : piece.triangles)
+                    piece.nu = std::max({piece.nu, segments(edge_length(t[0], t[1]), max_edge),
+                                         segments(edge_length(t[1], t[2]), max_edge),
+                                         segments(edge_length(t[2], t[0]), max_edge)});
+                total += double(piece.triangles.size()) * piece.nu * piece.nu;
+            }
+            pieces.push_back(std::move(piece));
+        }
+        check_cap(total);
+        for (const Piece& piece : pieces) {
+            const std::vector<int>& c = piece.corners;
+            if (c.size() == 4) {
+                build.quad(c[0], c[1], c[2], c[3], int(piece.nu), int(piece.nv));
+            } else {
+                for (const auto& t : piece.triangles) build.triangle(c[t[0]], c[t[1]], c[t[2]], int(piece.nu));
+            }
+        }
     }
     if (emits) back_sides += out.size() - first_element;
     std::vector<int32_t> corners(p.size());
