@@ -273,8 +273,9 @@ def camera_for_cornell_box():
     return camera_looking_along_y((0.5, -1.02, 0.5), 35.0)
 
 
-def cluttered_room(blocks, size=0.02):
-    """A cluttered room: the inside of a 2 m cube (one object 'Room', rho 0.7, normals inward),
+def cluttered_room(blocks, size=0.02, cells=1):
+    """A cluttered room: the inside of a 2 m cube (one object 'Room', rho 0.7, normals inward,
+    `cells` x `cells` quads a side),
     a 0.5 m square 1 cm under the ceiling emitting radiance 10 downwards ('Panel', black, 7.85 W),
     and `blocks` closed 2 cm cubes (six faces each, rho 0.7) standing on the floor in one object
     'Blocks', scattered as an artist's scatter leaves them (native/tests/test_hierarchy.cpp's
@@ -285,7 +286,7 @@ def cluttered_room(blocks, size=0.02):
     sides = [((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),   # floor, ceiling
              ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),   # walls, inward
              ((0, 2, 0), (2, 0, 0), (0, 0, 2)), ((0, 0, 0), (0, 0, 2), (2, 0, 0))]
-    mesh_object("Room", [grid(o, u, v, 1, 1) + (0,) for o, u, v in sides], [white])
+    mesh_object("Room", [grid(o, u, v, cells, cells) + (0,) for o, u, v in sides], [white])
     mesh_object("Panel", [grid((0.75, 0.75, 1.99), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
                 [emission("Panel", (1.0, 1.0, 1.0), 10.0)])
     if not blocks:
