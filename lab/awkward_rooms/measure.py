@@ -80,8 +80,9 @@ def main():
     positions = harness.corner_positions(room.data)
     hot = cycles > 20 * np.median(cycles)  # the spot over a small emitter: judged on its own below
     judged = ~hot & (cycles > 0.01 * cycles.mean())
-    noise = np.sqrt(np.mean(((halves[0] - halves[1]) / 2 / cycles)[judged] ** 2))
-    rms = np.sqrt(np.mean(((baked - cycles) / cycles)[judged] ** 2))
+    c = cycles[judged]
+    noise = np.sqrt(np.mean(((halves[0] - halves[1])[judged] / 2 / c) ** 2))
+    rms = np.sqrt(np.mean(((baked[judged] - c) / c) ** 2))
     print("scene %s, %s, gather %s: %d elements, method %s, resolution %d; bake %.1f s wall, %.1f s CPU "
           "(this process); Cycles %d samples x 2 took %.0f s" % (
               args.scene, args.quality, args.final_gather, summary["elements"], summary["method"],
