@@ -65,10 +65,46 @@ def compare(light):
                           np.abs(baked - reference).max(), reference[worst]), flush=True)
         assert relative_rms <= max_relative_rms, name
         assert abs(mean_error) <= max_mean_error, name
+    return box, keep, halves
+
+
+def seam_corners(mesh):
+    """Corners whose vertex position is shared with a face of another normal: the room's edges and
+    corners, the blocks' edges, where they stand on the floor."""
+    normals = np.empty(len(mesh.polygons) * 3)
+    mesh.polygons.foreach_get("normal", normals)
+    total = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", total)
+    corner_normal = np.repeat(normals.reshape(-1, 3), total, axis=0)
+    places, place = np.unique(np.round(harness.corner_positions(mesh), 5), axis=0, return_inverse=True)
+    place = place.ravel()
+    seam = np.zeros(len(places), dtype=bool)
+    for p, n in zip(place, corner_normal):  # a place is a seam when its corners' normals differ
+        seam[p] |= np.dot(n, corner_normal[place == p][0]) < 0.99
+    return seam[place]
 
 
 def test_emitting_mesh():
-    compare("MESH")
+    box, keep, halves = compare("MESH")
+    # Draft with the final gather, through the panel: the corners on seams take half their light
+    # from the other surface right at the seam, where the coarse solution's interpolated light is
+    # least right; gathered again from the seams' own gathered light, they are about as good as
+    # the rest. Measured (lab/final_gather, Cycles 2 x 8192): seam corners 2.07% RMS with one
+    # gather pass, 0.76% with three; all corners 1.28%, 0.68%.
+    settings = bpy.context.scene.radiosity
+    settings.quality, settings.final_gather = "DRAFT", True
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    baked = harness.corner_colors(box.data, "Radiosity")[keep]
+    reference = 0.5 * (halves[0][keep] + halves[1][keep])
+    scale = np.sqrt(np.mean(reference ** 2))
+    seam = seam_corners(box.data)[keep]
+    for name, where, limit in (("seam corners", seam, 0.012), ("all corners", np.ones_like(seam), 0.01)):
+        measured = np.mean((baked[where] - reference[where]) ** 2) / scale ** 2
+        noise = np.mean((halves[0][keep][where] - halves[1][keep][where]) ** 2) / 4 / scale ** 2
+        error = np.sqrt(max(measured - noise, 0.0))
+        print("Draft with the final gather, %s (%d): %.2f%% RMS, Cycles' noise %.2f%% taken out"
+              % (name, where.sum(), 100 * error, 100 * np.sqrt(noise)), flush=True)
+        assert error < limit, (name, error)
 
 
 def test_area_lamp():

@@ -51,9 +51,10 @@ PRESETS = {
 }
 # Final Gather (Lischinski, Tampieri & Greenberg 1993's local pass; the final gather of photon
 # maps): every output corner takes its direct light from each emitter and lamp at the point and its
-# indirect light from rays into the solution. Against Cycles on the Cornell box (lab/final_gather):
-# Draft 5.80% -> 1.28%, Medium 2.83% -> 1.00%, High 2.26% -> 0.76% RMS at 1024 rays, for 0.2 s
-# more at Draft and about 5% more time at Medium.
+# indirect light from rays into the solution, corners next to seams again from the seams' gathered
+# light. Against Cycles on the Cornell box (lab/final_gather): Draft 5.80% -> 0.68%, Medium 2.83% ->
+# 0.72%, High 2.26% -> 0.49% RMS at 1024 rays, for 0.4 s more at Draft and about 10% more time at
+# Medium.
 GATHER_RAYS = 1024
 # Emitting elements smaller than the resolution resolves (fewer than the preset's cells from half
 # the scene's diagonal) light every element directly instead of driving the resolution of the

@@ -276,7 +276,7 @@ def progress_text(info, tolerance):
         share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
-             "gather": "final gather"}.get(info["phase"], info["phase"])
+             "gather": "final gather", "gather seams": "final gather at seams"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 

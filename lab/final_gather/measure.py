@@ -84,8 +84,9 @@ original = auto_settings.Choice.stability_keywords
 def bake(quality, gather_rays):
     def keywords(choice):
         k = original(choice)
+        k.update(final_gather=bool(gather_rays))
         if gather_rays:
-            k.update(final_gather=True, gather_rays=gather_rays)
+            k["gather_rays"] = gather_rays
         return k
     auto_settings.Choice.stability_keywords = keywords
     try:

@@ -31,6 +31,11 @@
 /// so faces meeting at a vertex use the same rays and differ only where the light does, and the
 /// result does not depend on threads.
 ///
+/// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
+/// other surface right at the seam, where the interpolated solution is least like the light. So
+/// the vertices on seams are gathered too, and the points whose rays met a seam are gathered
+/// again from those values, in 3 passes in all (the last for the output points only).
+///
 /// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
 /// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
 /// whose emitters are split into thousands of elements pays for each at every corner).
@@ -47,8 +52,8 @@ struct GatherCounts {
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
 /// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
 /// each element's own emission (without the lamps' first reflection), `radiance` the solved one
-/// (read flat on emitters' back sides, which have no corner colours). Progress phase "gather",
-/// one unit per output vertex; throws Cancelled.
+/// (read flat on emitters' back sides, which have no corner colours). Progress phases "gather",
+/// one unit per gathered vertex, then "gather seams" for each later pass; throws Cancelled.
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
                           const std::vector<Rgb>& radiance, const Lights& lights,
                           const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
