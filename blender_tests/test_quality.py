@@ -24,7 +24,10 @@ ui = sys.modules[harness.MODULE + ".ui"]
 
 # The presets as the user guide documents them: (element size as a fraction of the scene's size,
 # hemi-cube cells the smallest elements must cover, tolerance).
-DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 32, 6, 1e-4), "HIGH": (1 / 48, 8, 1e-5)}
+# (element size as a share of the scene's size, cells, tolerance) with the final gather (the default)
+# and without it.
+DOCUMENTED_PRESETS = {"DRAFT": (1 / 8, 4, 1e-3), "MEDIUM": (1 / 16, 4, 1e-4), "HIGH": (1 / 24, 6, 1e-5)}
+UNGATHERED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 32, 6, 1e-4), "HIGH": (1 / 48, 8, 1e-5)}
 
 
 def surface_area(obj):
@@ -50,10 +53,13 @@ def test_presets_map_to_settings():
     # The scene's size is the side of the cube with the same surface area (Blender's own areas).
     size = math.sqrt(surface_area(box) / 6)
     settings = bpy.context.scene.radiosity
-    assert settings.quality == "MEDIUM", "an artist starts from Medium"
-    for quality, (fraction, cells, tolerance) in DOCUMENTED_PRESETS.items():
-        settings.quality = quality
+    assert settings.quality == "MEDIUM" and settings.final_gather, "an artist starts from Medium, gathered"
+    presets = [(quality, True, preset) for quality, preset in DOCUMENTED_PRESETS.items()]
+    presets += [(quality, False, preset) for quality, preset in UNGATHERED_PRESETS.items()]
+    for quality, gathered, (fraction, cells, tolerance) in presets:
+        settings.quality, settings.final_gather = quality, gathered
         choice = job_for(bpy.context.scene).choice
+        assert (choice.gather_rays > 0) == gathered, choice
         print("%s: element size %.5f (scene size %.4f), resolution %d (%s), tolerance %g, %d elements, %s"
               % (quality, choice.element_size, size, choice.resolution, choice.resolution_reason, choice.tolerance,
                  choice.elements, choice.method))
@@ -62,7 +68,7 @@ def test_presets_map_to_settings():
         # them; seen from half the 1 m cube's diagonal.
         face = 1 / scenes.CORNELL_CELLS
         wall_element = face / math.ceil(face / choice.element_size)
-        resolution = even_resolution(0.5 * math.sqrt(3), wall_element ** 2, cells)
+        resolution = max(32, even_resolution(0.5 * math.sqrt(3), wall_element ** 2, cells))  # the core's least
         assert (choice.resolution, choice.hemicube_rotations, choice.tolerance, choice.method) == (
             resolution, 1, tolerance, "gauss_seidel"), (choice, resolution)
         assert "smallest tenth of the elements cover %d cells" % cells in choice.resolution_reason, choice
@@ -70,7 +76,7 @@ def test_presets_map_to_settings():
         assert 6 / fraction ** 2 <= choice.elements <= 1.3 * 6 / fraction ** 2, choice.elements
 
     # Setting one of the individual values (as a script would) means Custom, and Custom uses them.
-    settings.quality = "DRAFT"
+    settings.quality, settings.final_gather = "DRAFT", True
     settings.element_size = 0.1
     assert settings.quality == "CUSTOM"
     settings.hemicube_resolution, settings.tolerance, settings.method = 97, 2e-3, "JACOBI"
@@ -442,4 +448,5 @@ def test_an_l_shaped_rug_does_not_set_the_resolution():
 harness.run(test_presets_map_to_settings, test_automatic_method_follows_the_memory_budget, test_summary_on_the_furnace,
             test_panel_shows_quality_and_summary, test_over_relaxation_near_rho_one,
             test_small_distant_lamp_is_lit_directly, test_tiny_lamp_past_the_cap_adds_rotations,
-            test_near_field_at_medium_and_high, test_thin_quads_are_cut, test_an_l_shaped_rug_does_not_set_the_resolution)
+            test_near_field_at_medium_and_high, test_thin_quads_are_cut,
+            test_an_l_shaped_rug_does_not_set_the_resolution)

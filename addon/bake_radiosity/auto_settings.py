@@ -3,6 +3,7 @@ scene's size, resolution from the elements the scene is made of (the core's
 recommended_resolution), tolerance from the preset, method from the core's own memory model and
 the memory budget. No bpy: numbers from the exported arrays only."""
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -28,33 +29,46 @@ MAX_ROTATIONS = 4
 
 
 @dataclass(frozen=True)
+class Gathered:
+    """A preset's solution when the final gather writes the output corners: the gather computes the
+    direct light and the light at seams at the corners themselves and reads only the smooth
+    indirect light from the solution, which can therefore be much coarser."""
+    divisions: int
+    cells: float
+    near_field: bool
+    rays: int           # indirect rays per output corner
+
+
+@dataclass(frozen=True)
 class Preset:
     divisions: int      # element size = scene size / divisions (about 6 divisions^2 elements)
     cells: float        # hemi-cube cells the smallest elements and emitters must cover (accuracy target)
     tolerance: float
     refine_tolerance: float  # hierarchical: error per link, share of the mean reflected radiance
     near_field: bool    # exact area factors between elements closer than their size
+    gathered: Gathered  # the solution when the final gather writes the output
 
 
 # Cells: the smallest tenth of the elements (and of the emitting elements), seen head-on from half
 # the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
-# RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236 (before: fixed 64,
-# 128, 192); a 2 cm lamp 1.5 m over a floor makes Draft 322 (blender_tests/test_quality.py).
+# RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236.
 # Near field, measured against Cycles (docs/accuracy.md): a slab 5 mm over a floor, corners under
 # and around it, Medium 7.5% -> 5.6% RMS and High 7.9% -> 7.1% with it, at the same time; the
 # Cornell box unchanged. At Draft's resolution it made the slab worse (15.7% -> 16.5%, bias +9% ->
 # +13%: partly hidden near pairs count as unhidden), so Draft leaves it off.
-PRESETS = {
-    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False),
-    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True),
-    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True),
-}
 # Final Gather (Lischinski, Tampieri & Greenberg 1993's local pass; the final gather of photon
 # maps): every output corner takes its direct light from each emitter and lamp at the point and its
 # indirect light from rays into the solution, corners next to seams again from the seams' gathered
-# light. Against Cycles on the Cornell box (lab/final_gather): Draft 5.80% -> 0.68%, Medium 2.83% ->
-# 0.72%, High 2.26% -> 0.49% RMS at 1024 rays, for 0.4 s more at Draft and about 10% more time at
-# Medium.
+# light. The presets' gathered solutions, against Cycles on the Cornell box (lab/final_gather,
+# 2 x 8192 samples, its noise taken out): Draft 432 elements and 256 rays 1.87% RMS in 0.13 CPU s;
+# Medium 1,728 elements and 1024 rays 0.68% in 0.66 s; High 3,888 elements, near field and 4096
+# rays 0.44% in 3.2 s. The ungathered Medium solution (6,912 elements) with 1024 rays: 0.72% in 4.7 s.
+PRESETS = {
+    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(8, 4.0, near_field=False, rays=256)),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True, gathered=Gathered(16, 4.0, near_field=False, rays=1024)),
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True, gathered=Gathered(24, 6.0, near_field=True, rays=4096)),
+}
+# Custom quality's final gather.
 GATHER_RAYS = 1024
 # Emitting elements smaller than the resolution resolves (fewer than the preset's cells from half
 # the scene's diagonal) light every element directly instead of driving the resolution of the
@@ -170,17 +184,35 @@ def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
 
 def choose(settings, exported, zonal=False):
     """The Choice for `settings` (pipeline.settings_of) on `exported`; `zonal`: a bake with media,
-    whose core call takes no stability settings."""
+    whose core call takes no stability settings. With a preset and the final gather, the preset's
+    gathered solution, unless its form factors would not fit the memory budget (the hierarchy,
+    which has no gather, then bakes the preset's own)."""
     size = scene_size(exported)
     preset = PRESETS.get(settings["quality"])
+    # The gather sets the mesh's own corners: the hierarchy gathers at its corners itself, the zonal
+    # bake has no gather, and Subdivided Copies show every element's corners, most not gathered.
+    may_gather = settings["final_gather"] and not zonal and settings["target"] == "ORIGINAL"
+    if preset is not None and may_gather:
+        choice = _choose(settings, exported, zonal, size, preset, gathered=True)
+        if choice.method != "hierarchical":
+            return choice
+    return _choose(settings, exported, zonal, size, preset, gathered=False)
+
+
+def _choose(settings, exported, zonal, size, preset, gathered):
     if preset is None:
         element_size = float(settings["element_size"])
         resolution = int(settings["hemicube_resolution"])
         tolerance = float(settings["tolerance"])
         refine_tolerance = float(settings["refine_tolerance"])
+        near_field, rays = False, GATHER_RAYS
     else:
-        element_size, tolerance = size / preset.divisions, preset.tolerance
+        solution = preset.gathered if gathered else preset
+        element_size, tolerance = size / solution.divisions, preset.tolerance
         refine_tolerance = preset.refine_tolerance
+        near_field, rays = solution.near_field, preset.gathered.rays
+        # The resolution follows the solution's cells (a preset's own, or its gathered one's).
+        preset = dataclasses.replace(preset, cells=solution.cells)
 
     max_element_aspect = 0.0 if zonal else MAX_ELEMENT_ASPECT
     core = native.core()
@@ -209,8 +241,6 @@ def choose(settings, exported, zonal=False):
                          "progressive refinement for scenes with media")
     if method == "hierarchical":  # visibility by ray tracing: no hemi-cubes
         chosen = Resolution(resolution, 1, "not used, the hierarchical method traces rays")
-    # The gather sets the mesh's own corners: the hierarchy gathers at its corners itself, the zonal
-    # bake has no gather, and Subdivided Copies show every element's corners, most not gathered.
     gathers = settings["final_gather"] and method != "hierarchical" and not zonal and settings["target"] == "ORIGINAL"
     return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance,
                   refine_tolerance=refine_tolerance, method=method,
@@ -218,8 +248,8 @@ def choose(settings, exported, zonal=False):
                   max_element_aspect=max_element_aspect, hemicube_rotations=chosen.rotations,
                   resolution_reason=chosen.reason,
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
-                  near_field=preset is not None and preset.near_field and method != "hierarchical" and not zonal,
-                  gather_rays=GATHER_RAYS if gathers else 0,
+                  near_field=near_field and method != "hierarchical" and not zonal,
+                  gather_rays=rays if gathers else 0,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 

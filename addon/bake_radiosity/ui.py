@@ -52,6 +52,12 @@ def draw_panel(layout, context):
         if settings.method == "HIERARCHICAL":
             column.prop(settings, "refine_tolerance")
         column.prop(settings, "max_iterations")
+    elif settings.final_gather and settings.target == "ORIGINAL":
+        gathered = preset.gathered
+        near_field = ", near field" if gathered.near_field else ""
+        column.label(text="Elements 1/%d of the scene, resolution from the scene (%g cells)%s, final gather %d rays, "
+                          "tolerance %g" % (gathered.divisions, gathered.cells, near_field, gathered.rays,
+                                            preset.tolerance))
     else:
         near_field = ", near field" if preset.near_field else ""
         column.label(text="Elements 1/%d of the scene, resolution from the scene (%g cells)%s, tolerance %g, "

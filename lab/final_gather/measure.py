@@ -33,7 +33,8 @@ parser.add_argument("--addon-zip", required=True)
 parser.add_argument("--reference", required=True)
 parser.add_argument("--quality", default="MEDIUM")
 parser.add_argument("--light", default="MESH", help="scenes.cornell_box's light: MESH, AREA or POINT")
-parser.add_argument("--rays", default="64,256,1024")
+parser.add_argument("--rays", default="preset,64,256,1024",
+                    help="gather rays per corner to try; 'preset': the preset's own")
 parser.add_argument("--save", help="folder for each bake's corner colours (.npy)")
 args = parser.parse_args(argv)
 
@@ -84,9 +85,10 @@ original = auto_settings.Choice.stability_keywords
 def bake(quality, gather_rays):
     def keywords(choice):
         k = original(choice)
-        k.update(final_gather=bool(gather_rays))
-        if gather_rays:
-            k["gather_rays"] = gather_rays
+        if gather_rays != "preset":
+            k.update(final_gather=bool(gather_rays))
+            if gather_rays:
+                k["gather_rays"] = gather_rays
         return k
     auto_settings.Choice.stability_keywords = keywords
     try:
@@ -117,5 +119,5 @@ print("Cycles reference %s: noise %.3f%%, %d corners compared" % (args.reference
 qualities = args.quality.split(",")
 for quality in qualities:
     bake(quality, 0)
-    for rays in [int(r) for r in args.rays.split(",") if r]:
+    for rays in [r if r == "preset" else int(r) for r in args.rays.split(",") if r]:
         bake(quality, rays)
