@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import lights, materials, media_materials, visibility
+from . import lights, materials, media_materials, preview, visibility
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
 COPY_TAG = "radiosity_bake_copy"
@@ -53,7 +53,7 @@ class ExportedScene:
 
 
 def export_scene(depsgraph, view_layer):
-    builder = _Builder()
+    builder = _Builder(preview.materials_behind(depsgraph.scene))
     for instance in visibility.rendered_instances(depsgraph, view_layer, builder.warnings, is_bake_output):
         obj = instance.object
         if obj.type == "LIGHT":
@@ -87,7 +87,8 @@ def polygon_normals_areas(positions, face_offsets, corner_vertices):
 
 
 class _Builder:
-    def __init__(self):
+    def __init__(self, materials_behind):
+        self.materials_behind = materials_behind  # the real materials under the baked-light preview
         self.positions, self.counts, self.corners = [], [], []
         self.polygon_material = []
         self.material_ids = {}          # material name (None = no material) -> id
@@ -128,11 +129,12 @@ class _Builder:
         world = co.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
         order = _corner_order(loop_start, loop_total, mirrored=np.linalg.det(matrix[:3, :3]) < 0.0)
 
-        slots = [slot.material for slot in obj.material_slots]
+        original = obj.original
+        slots = [self.materials_behind.get((original.name, index), slot.material)
+                 for index, slot in enumerate(obj.material_slots)]
         slot_ids = np.array([self.material_id(m) for m in slots] or [self.material_id(None)], dtype=np.int32)
         material_index = np.clip(material_index, 0, len(slot_ids) - 1)
 
-        original = obj.original
         self.parts.append(Part(
             object_name=original.name,
             mesh_name=original.data.name if original.type == "MESH" else "",

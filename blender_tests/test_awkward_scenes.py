@@ -1,0 +1,75 @@
+"""Scenes as a battery of awkward inputs makes them, in a 2 m room lit by a panel: a bake with the
+viewport previewing materials, walls modelled with their normals outwards, a stray triangle far
+away, objects that are not meshes, and input that cannot be baked as asked."""
+
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import scenes  # noqa: E402
+
+args = harness.arguments()
+addon = harness.install_addon(args.addon_zip)
+pipeline = sys.modules[harness.MODULE + ".pipeline"]
+
+ROOM_SIDES = [  # (origin, u, v) of a closed 2 m room, u x v pointing inwards
+    ((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
+    ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
+    ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),
+]
+
+
+def room_with_panel(albedo=0.5):
+    """A closed 2 m room of the given albedo, lit by a 50 cm emitting panel facing down 10 cm under
+    the ceiling."""
+    scenes.clear_scene()
+    walls = scenes.diffuse("Walls", (albedo, albedo, albedo))
+    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in ROOM_SIDES], [walls])
+    scenes.mesh_object("Panel", [scenes.grid((0.75, 0.75, 1.9), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
+                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 5.0)])
+    return room
+
+
+def set_viewport_shading(shading_type):
+    for screen in bpy.data.screens:
+        for area in screen.areas:
+            if area.type == "VIEW_3D":
+                area.spaces.active.shading.type = shading_type
+
+
+def test_the_real_materials_bake_whatever_the_viewport_previews():
+    """A red block in the room, baked once in Solid shading, then again with the baked light
+    previewed (Preview Radiosity: an emission material on every baked object) and the viewport in
+    Material Preview and Rendered: the block stays red and every colour equals the Solid bake."""
+    room = room_with_panel()
+    block = scenes.mesh_object("Block", scenes.block((0.6, 0.6), (1.2, 1.0), 0.5, 0.25),
+                               [scenes.diffuse("Red", scenes.RED)])
+    settings = bpy.context.scene.radiosity
+    settings.element_size, settings.hemicube_resolution = 0.25, 64
+    set_viewport_shading("SOLID")
+    addon.bake(bpy.context.scene)
+    solid = {o.name: harness.corner_colors(o.data, "Radiosity") for o in (room, block)}
+    red = solid["Block"].mean(axis=0)
+    assert red[0] > 4.0 * red[1] > 0.0, red
+
+    assert bpy.ops.radiosity.preview() == {"FINISHED"}
+    for shading_type in ("MATERIAL", "RENDERED"):
+        set_viewport_shading(shading_type)
+        summary = addon.bake(bpy.context.scene)
+        assert not any("Radiosity Preview" in w for w in summary["warnings"]), summary["warnings"]
+        for obj in (room, block):
+            baked = harness.corner_colors(obj.data, "Radiosity")
+            np.testing.assert_allclose(baked, solid[obj.name], rtol=1e-5, atol=1e-7,
+                                       err_msg="%s baked in %s" % (obj.name, shading_type))
+    assert bpy.ops.radiosity.bake() == {"FINISHED"}
+    np.testing.assert_allclose(harness.corner_colors(block.data, "Radiosity"), solid["Block"], rtol=1e-5)
+    assert bpy.ops.radiosity.preview() == {"FINISHED"}  # off again: the artist's materials are back
+    assert block.material_slots[0].material.name == "Red"
+
+
+harness.run(test_the_real_materials_bake_whatever_the_viewport_previews)
