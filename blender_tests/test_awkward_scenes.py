@@ -72,4 +72,38 @@ def test_the_real_materials_bake_whatever_the_viewport_previews():
     assert block.material_slots[0].material.name == "Red"
 
 
-harness.run(test_the_real_materials_bake_whatever_the_viewport_previews)
+def closed_cube(name, corner, size):
+    """The six faces of a cube (outward normals), its bottom face on whatever it stands on."""
+    sides = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+             ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+             ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
+    corner = np.asarray(corner, dtype=np.float64)
+    return scenes.mesh_object(name, [scenes.grid(corner + size * np.array(o), size * np.array(u), size * np.array(v),
+                                                 1, 1) + (0,) for o, u, v in sides],
+                              [scenes.diffuse(name, (0.5, 0.5, 0.5))])
+
+
+def test_a_room_with_outward_normals_is_named():
+    """The room modelled with its normals outwards bakes black, as Cycles' bake of it does (both
+    light a face's front); the bake names the room and how many of its faces turn away from the
+    light. A cube standing on the floor of a well-made room, whose bottom face is black too, is not
+    named: nothing lights its back."""
+    room = room_with_panel()
+    room.data.flip_normals()
+    summary = addon.bake(bpy.context.scene, quality="DRAFT")
+    assert harness.corner_colors(room.data, "Radiosity").max() == 0.0
+    named = [w for w in summary["warnings"] if "turned away" in w]
+    assert len(named) == 1 and "object 'Room' (96 faces)" in named[0], summary["warnings"]
+    cycles = harness.cycles_corner_bake(room, 4, 1)
+    assert cycles.max() == 0.0, cycles.max()
+
+    room.data.flip_normals()
+    cube = closed_cube("Cube", (0.3, 0.3, 0.0), 0.4)
+    summary = addon.bake(bpy.context.scene, quality="DRAFT")
+    assert harness.corner_colors(room.data, "Radiosity").mean() > 0.05
+    assert harness.corner_colors(cube.data, "Radiosity").min() == 0.0, "the cube's bottom face is lit"
+    assert not any("turned away" in w for w in summary["warnings"]), summary["warnings"]
+
+
+harness.run(test_the_real_materials_bake_whatever_the_viewport_previews,
+            test_a_room_with_outward_normals_is_named)

@@ -8,8 +8,8 @@ import time
 
 import bpy
 
-from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
-               writeback)
+from . import (auto_settings, energy, error_estimate, export, facing, media_energy, media_export, media_writeback,
+               native, writeback)
 from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
@@ -109,6 +109,7 @@ class BakeJob:
                                 "was written; please report this scene"
                                 % (error.phase, self.polygon_name(error.polygon))) from error
         self.warnings += self._skipped_warnings()
+        self.warnings += facing.turned_away_warnings(self.exported, self.result["corner_radiance"])
         hierarchy = self.result.get("hierarchy")
         if hierarchy and hierarchy["leaf_cap_reached"]:
             self.warnings.append("Refinement stopped at the element cap (%d elements) before the light was followed "
