@@ -4,6 +4,7 @@ away, objects that are not meshes, and input that cannot be baked as asked."""
 
 import os
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -105,5 +106,33 @@ def test_a_room_with_outward_normals_is_named():
     assert not any("turned away" in w for w in summary["warnings"]), summary["warnings"]
 
 
+def test_a_stray_triangle_far_away_costs_nothing():
+    """One triangle 1e6 m away (1 m across), or 1e30 m away (1e25 m across): the room bakes with the
+    settings, colours and about the time it has alone, and the triangle is named as left out."""
+    room = room_with_panel()
+    start = time.perf_counter()
+    alone = addon.bake(bpy.context.scene, quality="DRAFT")
+    seconds_alone = time.perf_counter() - start
+    lit_alone = harness.corner_colors(room.data, "Radiosity")
+    for distance, size in ((1e6, 1.0), (1e30, 1e25)):
+        stray = scenes.mesh_object("Stray", [(distance + size * np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]]),
+                                              np.array([[0, 1, 2]]), 0)])
+        start = time.perf_counter()
+        summary = addon.bake(bpy.context.scene, quality="DRAFT")
+        seconds = time.perf_counter() - start
+        print("stray at %g m: %.1f s (room alone %.1f s), resolution %d x %d, element size %.3g m"
+              % (distance, seconds, seconds_alone, summary["resolution"], summary["hemicube_rotations"],
+                 summary["element_size"]))
+        named = [w for w in summary["warnings"] if "left out" in w]
+        assert len(named) == 1 and "object 'Stray' (1 face)" in named[0], summary["warnings"]
+        assert not any("skipped" in w for w in summary["warnings"]), summary["warnings"]
+        for key in ("resolution", "hemicube_rotations", "element_size", "elements"):
+            assert summary[key] == alone[key], (key, summary[key], alone[key])
+        assert seconds < 2.0 * seconds_alone + 2.0, (seconds, seconds_alone)
+        np.testing.assert_allclose(harness.corner_colors(room.data, "Radiosity"), lit_alone, rtol=1e-6)
+        bpy.data.objects.remove(stray)
+
+
 harness.run(test_the_real_materials_bake_whatever_the_viewport_previews,
-            test_a_room_with_outward_normals_is_named)
+            test_a_room_with_outward_normals_is_named,
+            test_a_stray_triangle_far_away_costs_nothing)

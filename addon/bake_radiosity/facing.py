@@ -36,7 +36,8 @@ def turned_away_warnings(exported, corner_radiance):
             counts[part.object_name] = counts.get(part.object_name, 0) + 1
     if not counts:
         return []
-    items = [(name, "%d faces" % count) for name, count in sorted(counts.items(), key=lambda c: -c[1])]
+    items = [(name, "%d face%s" % (count, "s" if count > 1 else ""))
+             for name, count in sorted(counts.items(), key=lambda c: -c[1])]
     return [visibility.listing("Faces turned away from all light bake black while light reaches their back (renders "
                                "light both sides, a bake the side the normal shows, as Cycles' bake does): flip their "
                                "normals (Mesh > Normals > Flip, or Recalculate Inside for a room)", "object", items)]

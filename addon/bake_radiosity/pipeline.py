@@ -9,7 +9,7 @@ import time
 import bpy
 
 from . import (auto_settings, energy, error_estimate, export, facing, media_energy, media_export, media_writeback,
-               native, writeback)
+               native, outliers, writeback)
 from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
@@ -73,7 +73,8 @@ class BakeJob:
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
             raise BakeError("Nothing to bake: no mesh renders in view layer '%s'" % view_layer.name)
-        self.warnings = list(self.exported.warnings)
+        self.far_polygons, far_warnings = outliers.leave_out_far_polygons(self.exported)
+        self.warnings = list(self.exported.warnings) + far_warnings
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
         self.warnings += self.media.warnings
         if self.media.media:
@@ -196,7 +197,8 @@ class BakeJob:
         return "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "a lamp"
 
     def _skipped_warnings(self):
-        skipped = self.result["skipped"]
+        skipped = [(polygon, reason) for polygon, reason in self.result["skipped"]
+                   if polygon not in self.far_polygons]  # named already, as far away
         if not skipped:
             return []
         names = []
