@@ -4,6 +4,7 @@ Which objects and lamps take part is what Cycles renders (visibility.py)."""
 
 from dataclasses import dataclass, field
 
+import bpy
 import numpy as np
 
 from . import lights, materials, media_materials, preview, visibility
@@ -58,8 +59,10 @@ def export_scene(depsgraph, view_layer):
         obj = instance.object
         if obj.type == "LIGHT":
             builder.add_light(obj, instance.matrix_world)
-        elif (obj.type in GEOMETRY_TYPES and not is_bake_output(obj.original)
-              and not media_materials.is_medium_only(obj)):
+        elif (obj.type in GEOMETRY_TYPES and isinstance(obj.data, bpy.types.Mesh)
+              and not is_bake_output(obj.original) and not media_materials.is_medium_only(obj)):
+            # Cycles renders an object only if its evaluated data is a mesh (blender/object.cpp,
+            # object_is_geometry): curves, text, surfaces and metaballs come again as a mesh instance.
             builder.add_geometry(instance)  # a medium-only mesh has no surface in Cycles; media_export reads it
     return builder.finish()
 
