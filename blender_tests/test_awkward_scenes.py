@@ -182,7 +182,42 @@ def test_text_curves_and_metaballs_bake_once_and_quickly():
         (summary["hierarchy"]["patches"], converted["hierarchy"]["patches"])
 
 
+def test_an_array_modifier_and_a_missing_volume_file_are_named():
+    """An Array modifier on target Original: the warning names the modifier and says that Subdivided
+    Copies bakes the object. A Volume object whose .vdb file is missing: named with its file, with
+    and without a volume material."""
+    room = room_with_panel()
+    shelf = scenes.mesh_object("Shelf", [scenes.grid((0.2, 0.2, 0.6), (0.3, 0, 0), (0, 0.3, 0), 1, 1) + (0,)],
+                               [scenes.diffuse("Shelf", (0.5, 0.5, 0.5))])
+    shelf.modifiers.new("Shelves", "ARRAY").relative_offset_displace = (0.0, 0.0, 1.0)
+    summary = addon.bake(bpy.context.scene, quality="DRAFT")
+    named = [w for w in summary["warnings"] if "Shelf" in w]
+    assert len(named) == 1 and "Shelves" in named[0] and "Target: Subdivided Copies bakes" in named[0], \
+        summary["warnings"]
+    summary = addon.bake(bpy.context.scene, quality="DRAFT", target="COPIES")
+    assert not any("Shelf" in w for w in summary["warnings"]), summary["warnings"]
+    copies = [o for o in bpy.data.objects if o.get("radiosity_bake_copy") == "Shelf"]
+    assert copies and harness.corner_colors(copies[0].data, "Radiosity").mean() > 0.0, copies
+    bpy.data.objects.remove(shelf)
+    assert room.name == "Room"
+
+    missing = os.path.join(args.work, "no-such-folder", "smoke.vdb")
+    for with_material in (False, True):
+        volume = bpy.data.volumes.new("Smoke")
+        volume.filepath = missing
+        if with_material:
+            volume.materials.append(scenes.fog_material())
+        smoke = bpy.data.objects.new("Smoke", volume)
+        smoke.location = (1.0, 1.0, 1.0)
+        bpy.context.scene.collection.objects.link(smoke)
+        summary = addon.bake(bpy.context.scene, quality="DRAFT")
+        named = [w for w in summary["warnings"] if "'Smoke'" in w and missing in w and "not found" in w]
+        assert len(named) == 1, (with_material, summary["warnings"])
+        bpy.data.objects.remove(smoke)
+
+
 harness.run(test_the_real_materials_bake_whatever_the_viewport_previews,
             test_a_room_with_outward_normals_is_named,
             test_a_stray_triangle_far_away_costs_nothing,
-            test_text_curves_and_metaballs_bake_once_and_quickly)
+            test_text_curves_and_metaballs_bake_once_and_quickly,
+            test_an_array_modifier_and_a_missing_volume_file_are_named)

@@ -32,7 +32,7 @@ class Part:
     polygon_material_index: np.ndarray
     material_names: list
     matrix_world: np.ndarray
-    writable: bool = True
+    unwritable: str = ""  # why ORIGINAL cannot write its light onto the object's mesh ("" = it can)
     shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
 
 
@@ -148,9 +148,7 @@ class _Builder:
             polygon_material_index=material_index,
             material_names=[m.name if m is not None else None for m in slots],
             matrix_world=matrix,
-            writable=(not instance.is_instance and original.type == "MESH"
-                      and len(original.data.loops) == len(mesh.loops)
-                      and len(original.data.polygons) == len(mesh.polygons)),
+            unwritable=_unwritable_reason(instance, original, mesh),
         ))
         self.positions.append(world)
         self.counts.append(loop_total)
@@ -216,6 +214,18 @@ class _Builder:
             if name and len(parts) > 1:
                 for part in parts:
                     part.shares_mesh = True
+
+
+def _unwritable_reason(instance, original, mesh):
+    """Why the light of this part cannot go onto the original object's mesh corners, or ""."""
+    if instance.is_instance:
+        return "instances"
+    if original.type != "MESH":
+        return "not meshes"
+    if len(original.data.loops) != len(mesh.loops) or len(original.data.polygons) != len(mesh.polygons):
+        changing = [m.name for m in original.modifiers if m.show_render]
+        return "modifiers change their faces (%s)" % ", ".join(changing) if changing else "modifiers change their faces"
+    return ""
 
 
 def _corner_order(loop_start, loop_total, mirrored):
