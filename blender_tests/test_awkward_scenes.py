@@ -3,6 +3,7 @@ viewport previewing materials, walls modelled with their normals outwards, a str
 away, objects that are not meshes, and input that cannot be baked as asked."""
 
 import os
+import subprocess
 import sys
 import time
 
@@ -216,8 +217,28 @@ def test_an_array_modifier_and_a_missing_volume_file_are_named():
         bpy.data.objects.remove(smoke)
 
 
+def test_the_batch_command_reports_every_phase():
+    """The batch command prints a line as each phase starts, the add-on's own (export, settings,
+    write-back) and the core's (form factors, solve, final gather), in the order they run."""
+    room_with_panel()
+    source = os.path.join(args.work, "room.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
+    run = subprocess.run([bpy.app.binary_path, "-b", source, "--python-expr",
+                          "import bake_radiosity.cli as c; c.main()", "--", "--quality", "DRAFT",
+                          "--output", os.path.join(args.work, "room-baked.blend")],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-800:]
+    lines = [line for line in run.stdout.splitlines() if line.startswith("Bake Radiosity: ")]
+    print("\n".join(lines))
+    phases = ["exporting", "choosing settings", "form factors", "solving", "final gather", "writing", "saved"]
+    first = [next((k for k, line in enumerate(lines) if line.startswith("Bake Radiosity: " + p)), None)
+             for p in phases]
+    assert None not in first and first == sorted(first), dict(zip(phases, first))
+
+
 harness.run(test_the_real_materials_bake_whatever_the_viewport_previews,
             test_a_room_with_outward_normals_is_named,
             test_a_stray_triangle_far_away_costs_nothing,
             test_text_curves_and_metaballs_bake_once_and_quickly,
-            test_an_array_modifier_and_a_missing_volume_file_are_named)
+            test_an_array_modifier_and_a_missing_volume_file_are_named,
+            test_the_batch_command_reports_every_phase)

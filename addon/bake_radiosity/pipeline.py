@@ -69,6 +69,7 @@ class BakeJob:
 
     def _prepare(self, depsgraph, view_layer):
         start = time.perf_counter()
+        announce("exporting view layer '%s'" % view_layer.name)
         self.exported = export.export_scene(depsgraph, view_layer)
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
@@ -89,6 +90,7 @@ class BakeJob:
             # Said before any form factor is computed: the result could only be black.
             raise BakeError("Nothing lights the scene: no lamp, emitting material or emitting medium is visible in "
                             "renders (the World's light is not baked)")
+        announce("choosing settings for %d faces" % self.exported.polygon_count)
         try:
             self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
         except ValueError as error:
@@ -154,6 +156,7 @@ class BakeJob:
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
         start = time.perf_counter()
+        announce("writing the light into the scene")
         media_files = []
         if self.media.media:  # files first: if one cannot be written, nothing in the scene has changed
             with core_errors_as_bake_errors():
@@ -255,18 +258,27 @@ def view_layer_and_depsgraph(scene):
     return view_layer, depsgraph
 
 
+def announce(text):
+    """Prints a phase the add-on runs itself, in the core's progress lines' form, when Blender runs
+    without a window (-b and the batch command); a window shows phases in its status bar."""
+    if bpy.app.background:
+        print("Bake Radiosity: " + text, flush=True)
+
+
 class ProgressPrinter:
-    """Prints a progress line at most every `interval` seconds (for -b and the command line)."""
+    """Prints a progress line as each phase starts and ends, and at most every `interval` seconds
+    between (for -b and the command line)."""
 
     def __init__(self, tolerance, interval=1.0):
         self.tolerance = tolerance
         self.interval = interval
         self.last = -math.inf
+        self.phase = None
 
     def __call__(self, info):
         now = time.perf_counter()
-        if now - self.last >= self.interval or info["done"] == info["total"]:
-            self.last = now
+        if now - self.last >= self.interval or info["done"] == info["total"] or info["phase"] != self.phase:
+            self.last, self.phase = now, info["phase"]
             print(progress_text(info, self.tolerance), flush=True)
         return True
 
