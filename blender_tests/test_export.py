@@ -103,7 +103,7 @@ def test_geometry_matches_blender():
         assert normal_error < 1e-4
         assert center_error < 1e-5
     assert len(modified.evaluated_get(depsgraph).data.polygons) > 3 * 6, "modifiers were not applied"
-    writable = {p.object_name: p.writable for p in exported.parts}
+    writable = {p.object_name: not p.unwritable for p in exported.parts}
     assert writable == {"Modified": False, "Mirrored": True, "Instanced": False}, writable
 
 

@@ -4,9 +4,10 @@ Which objects and lamps take part is what Cycles renders (visibility.py)."""
 
 from dataclasses import dataclass, field
 
+import bpy
 import numpy as np
 
-from . import lights, materials, media_materials, visibility
+from . import lights, materials, media_materials, preview, visibility
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
 COPY_TAG = "radiosity_bake_copy"
@@ -31,7 +32,7 @@ class Part:
     polygon_material_index: np.ndarray
     material_names: list
     matrix_world: np.ndarray
-    writable: bool = True
+    unwritable: str = ""  # why ORIGINAL cannot write its light onto the object's mesh ("" = it can)
     shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
 
 
@@ -53,13 +54,15 @@ class ExportedScene:
 
 
 def export_scene(depsgraph, view_layer):
-    builder = _Builder()
+    builder = _Builder(preview.materials_behind(depsgraph.scene))
     for instance in visibility.rendered_instances(depsgraph, view_layer, builder.warnings, is_bake_output):
         obj = instance.object
         if obj.type == "LIGHT":
             builder.add_light(obj, instance.matrix_world)
-        elif (obj.type in GEOMETRY_TYPES and not is_bake_output(obj.original)
-              and not media_materials.is_medium_only(obj)):
+        elif (obj.type in GEOMETRY_TYPES and isinstance(obj.data, bpy.types.Mesh)
+              and not is_bake_output(obj.original) and not media_materials.is_medium_only(obj)):
+            # Cycles renders an object only if its evaluated data is a mesh (blender/object.cpp,
+            # object_is_geometry): curves, text, surfaces and metaballs come again as a mesh instance.
             builder.add_geometry(instance)  # a medium-only mesh has no surface in Cycles; media_export reads it
     return builder.finish()
 
@@ -87,7 +90,8 @@ def polygon_normals_areas(positions, face_offsets, corner_vertices):
 
 
 class _Builder:
-    def __init__(self):
+    def __init__(self, materials_behind):
+        self.materials_behind = materials_behind  # the real materials under the baked-light preview
         self.positions, self.counts, self.corners = [], [], []
         self.polygon_material = []
         self.material_ids = {}          # material name (None = no material) -> id
@@ -128,11 +132,12 @@ class _Builder:
         world = co.astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
         order = _corner_order(loop_start, loop_total, mirrored=np.linalg.det(matrix[:3, :3]) < 0.0)
 
-        slots = [slot.material for slot in obj.material_slots]
+        original = obj.original
+        slots = [self.materials_behind.get((original.name, index), slot.material)
+                 for index, slot in enumerate(obj.material_slots)]
         slot_ids = np.array([self.material_id(m) for m in slots] or [self.material_id(None)], dtype=np.int32)
         material_index = np.clip(material_index, 0, len(slot_ids) - 1)
 
-        original = obj.original
         self.parts.append(Part(
             object_name=original.name,
             mesh_name=original.data.name if original.type == "MESH" else "",
@@ -143,9 +148,7 @@ class _Builder:
             polygon_material_index=material_index,
             material_names=[m.name if m is not None else None for m in slots],
             matrix_world=matrix,
-            writable=(not instance.is_instance and original.type == "MESH"
-                      and len(original.data.loops) == len(mesh.loops)
-                      and len(original.data.polygons) == len(mesh.polygons)),
+            unwritable=_unwritable_reason(instance, original, mesh),
         ))
         self.positions.append(world)
         self.counts.append(loop_total)
@@ -211,6 +214,18 @@ class _Builder:
             if name and len(parts) > 1:
                 for part in parts:
                     part.shares_mesh = True
+
+
+def _unwritable_reason(instance, original, mesh):
+    """Why the light of this part cannot go onto the original object's mesh corners, or ""."""
+    if instance.is_instance:
+        return "instances"
+    if original.type != "MESH":
+        return "not meshes"
+    if len(original.data.loops) != len(mesh.loops) or len(original.data.polygons) != len(mesh.polygons):
+        changing = [m.name for m in original.modifiers if m.show_render]
+        return "modifiers change their faces (%s)" % ", ".join(changing) if changing else "modifiers change their faces"
+    return ""
 
 
 def _corner_order(loop_start, loop_total, mirrored):

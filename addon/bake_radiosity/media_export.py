@@ -46,6 +46,8 @@ def export_media(depsgraph, view_layer, zone_size):
         if is_bake_output(obj.original):
             continue
         material = _volume_material(obj, warnings) if obj.type in GEOMETRY_TYPES | {"VOLUME"} else None
+        if material is None and obj.type == "VOLUME":
+            warnings.append(_volume_without_material(obj))
         if material is not None:
             sources.append((obj, np.array(instance.matrix_world, dtype=np.float64), material))
     exported = ExportedMedia(warnings=warnings)
@@ -76,6 +78,17 @@ def _volume_material(obj, warnings):
         warnings.append("Object '%s' has several volume materials; its medium uses '%s'"
                         % (obj.name, with_volume[0].name))
     return with_volume[0] if with_volume else None
+
+
+def _volume_without_material(obj):
+    """Cycles renders a Volume object without a volume material as a default Principled Volume; the
+    bake needs the material to read its density and colour."""
+    volume = obj.original.data
+    path = bpy.path.abspath(volume.filepath, library=volume.library)
+    if not os.path.isfile(path):
+        return "Volume '%s': file '%s' not found and no volume material; not baked" % (obj.name, path)
+    return ("Volume '%s' has no volume material (Cycles renders it as a default Principled Volume); not baked: "
+            "give it a material with a Principled Volume" % obj.name)
 
 
 def _world_box(obj, matrix):

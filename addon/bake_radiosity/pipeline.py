@@ -8,8 +8,8 @@ import time
 
 import bpy
 
-from . import (auto_settings, energy, error_estimate, export, media_energy, media_export, media_writeback, native,
-               writeback)
+from . import (auto_settings, energy, error_estimate, export, facing, media_energy, media_export, media_writeback,
+               native, outliers, writeback)
 from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
@@ -69,11 +69,13 @@ class BakeJob:
 
     def _prepare(self, depsgraph, view_layer):
         start = time.perf_counter()
+        announce("exporting view layer '%s'" % view_layer.name)
         self.exported = export.export_scene(depsgraph, view_layer)
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
             raise BakeError("Nothing to bake: no mesh renders in view layer '%s'" % view_layer.name)
-        self.warnings = list(self.exported.warnings)
+        self.far_polygons, far_warnings = outliers.leave_out_far_polygons(self.exported)
+        self.warnings = list(self.exported.warnings) + far_warnings
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
         self.warnings += self.media.warnings
         if self.media.media:
@@ -88,6 +90,7 @@ class BakeJob:
             # Said before any form factor is computed: the result could only be black.
             raise BakeError("Nothing lights the scene: no lamp, emitting material or emitting medium is visible in "
                             "renders (the World's light is not baked)")
+        announce("choosing settings for %d faces" % self.exported.polygon_count)
         try:
             self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
         except ValueError as error:
@@ -109,6 +112,7 @@ class BakeJob:
                                 "was written; please report this scene"
                                 % (error.phase, self.polygon_name(error.polygon))) from error
         self.warnings += self._skipped_warnings()
+        self.warnings += facing.turned_away_warnings(self.exported, self.result["corner_radiance"])
         hierarchy = self.result.get("hierarchy")
         if hierarchy and hierarchy["leaf_cap_reached"]:
             self.warnings.append("Refinement stopped at the element cap (%d elements) before the light was followed "
@@ -152,6 +156,7 @@ class BakeJob:
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
         start = time.perf_counter()
+        announce("writing the light into the scene")
         media_files = []
         if self.media.media:  # files first: if one cannot be written, nothing in the scene has changed
             with core_errors_as_bake_errors():
@@ -195,7 +200,8 @@ class BakeJob:
         return "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "a lamp"
 
     def _skipped_warnings(self):
-        skipped = self.result["skipped"]
+        skipped = [(polygon, reason) for polygon, reason in self.result["skipped"]
+                   if polygon not in self.far_polygons]  # named already, as far away
         if not skipped:
             return []
         names = []
@@ -252,18 +258,27 @@ def view_layer_and_depsgraph(scene):
     return view_layer, depsgraph
 
 
+def announce(text):
+    """Prints a phase the add-on runs itself, in the core's progress lines' form, when Blender runs
+    without a window (-b and the batch command); a window shows phases in its status bar."""
+    if bpy.app.background:
+        print("Bake Radiosity: " + text, flush=True)
+
+
 class ProgressPrinter:
-    """Prints a progress line at most every `interval` seconds (for -b and the command line)."""
+    """Prints a progress line as each phase starts and ends, and at most every `interval` seconds
+    between (for -b and the command line)."""
 
     def __init__(self, tolerance, interval=1.0):
         self.tolerance = tolerance
         self.interval = interval
         self.last = -math.inf
+        self.phase = None
 
     def __call__(self, info):
         now = time.perf_counter()
-        if now - self.last >= self.interval or info["done"] == info["total"]:
-            self.last = now
+        if now - self.last >= self.interval or info["done"] == info["total"] or info["phase"] != self.phase:
+            self.last, self.phase = now, info["phase"]
             print(progress_text(info, self.tolerance), flush=True)
         return True
 

@@ -16,6 +16,30 @@ def is_active(scene):
     return STATE_KEY in scene
 
 
+def materials_behind(scene):
+    """{(object name, slot index): material} that the preview's emission material covers on `scene`
+    (empty when the preview is off): the materials a bake must read, whatever the viewport shows.
+    A slot the preview added to an object that had none covers no material (None)."""
+    if not is_active(scene):
+        return {}
+    state = json.loads(scene[STATE_KEY])
+    behind = {}
+    for obj_name, index, link, material_name in state["slots"]:
+        obj = bpy.data.objects.get(obj_name)
+        if obj is None:
+            continue
+        if link == "OBJECT":
+            behind[(obj_name, index)] = bpy.data.materials.get(material_name) if material_name else None
+        else:
+            data_materials = obj.data.materials
+            behind[(obj_name, index)] = data_materials[index] if index < len(data_materials) else None
+    for obj_name in state["appended"]:
+        obj = bpy.data.objects.get(obj_name)
+        if obj is not None and len(obj.material_slots):
+            behind[(obj_name, len(obj.material_slots) - 1)] = None
+    return behind
+
+
 def show(context):
     """Switches to the preview; returns a message if there is nothing baked to show."""
     scene = context.scene

@@ -34,10 +34,10 @@ def set_color_attribute(mesh, name, rgb):
 
 
 def _write_original(exported, corner_radiance, name, separate_linked_duplicates):
-    written, refused, shared, separated = set(), [], [], []
+    written, refused, shared, separated = set(), {}, [], []
     for part in exported.parts:
-        if not part.writable:
-            refused.append(part.object_name)
+        if part.unwritable:
+            refused.setdefault(part.unwritable, []).append(part.object_name)
             continue
         if part.shares_mesh and not separate_linked_duplicates:
             shared.append(part.object_name)
@@ -50,7 +50,7 @@ def _write_original(exported, corner_radiance, name, separate_linked_duplicates)
             separated.append(part.object_name)
         mesh = obj.data
         if _name_taken_by_other_attribute(mesh, name):
-            refused.append(part.object_name)
+            refused.setdefault("a non-colour attribute is named '%s'" % name, []).append(part.object_name)
             continue
         rgb = np.empty((len(mesh.loops), 3), dtype=np.float32)
         rgb[part.corner_order] = corner_radiance[part.corner_start:part.corner_stop]
@@ -64,10 +64,9 @@ def _write_original(exported, corner_radiance, name, separate_linked_duplicates)
     if separated:
         warnings.append("Gave %d linked duplicate(s) a mesh of their own to hold their light (%s)"
                         % (len(separated), _listed(separated)))
-    if refused:
-        warnings.append("Not written onto %d object(s) (%s): instances, modifiers that change the face count, or a "
-                        "non-colour attribute named '%s'. They still light the scene; use Target: Subdivided Copies "
-                        "to get their light" % (len(set(refused)), _listed(refused), name))
+    for reason, names in refused.items():
+        warnings.append("Not written onto %d object(s) (%s): %s. They still light the scene; Target: Subdivided "
+                        "Copies bakes their light" % (len(set(names)), _listed(names), reason))
     return warnings
 
 
