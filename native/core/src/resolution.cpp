@@ -31,11 +31,17 @@ double half_diagonal(const Elements& elements) {
 
 int recommended_resolution(const Elements& elements, double cells) {
     if (elements.size() == 0) return 32;
+    // The smallest elements that hold a tenth of the surface, not a tenth by count: a prop made of
+    // thousands of tiny faces (a text object, a cut contact line) carries little of the light, and
+    // must not set the cost of the whole bake.
     std::vector<float> area = elements.area;
-    // The 10th percentile, not the minimum: one stray sliver should not set the cost of the bake.
-    auto small = area.begin() + static_cast<std::ptrdiff_t>(area.size() / 10);
-    std::nth_element(area.begin(), small, area.end());
-    return resolution_for(*small, half_diagonal(elements), cells);
+    std::sort(area.begin(), area.end());
+    double total = 0.0;
+    for (const float a : area) total += std::max(0.0f, a);
+    double held = 0.0;
+    std::size_t k = 0;
+    while (k + 1 < area.size() && (held += std::max(0.0f, area[k])) < 0.1 * total) ++k;
+    return resolution_for(area[k], half_diagonal(elements), cells);
 }
 
 double resolved_area(const Elements& elements, int resolution, double cells) {

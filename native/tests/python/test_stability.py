@@ -107,7 +107,8 @@ class StabilitySettingsTest(unittest.TestCase):
 
 
 class RecommendedResolutionTest(unittest.TestCase):
-    """N = 2 d sqrt(cells / A) for the 10th percentile area A at half the bounding box diagonal d,
+    """N = 2 d sqrt(cells / A) for A the largest of the smallest elements that hold a tenth of the area,
+    at half the bounding box diagonal d,
     even, within [32, 1024] (docs/stability.md), computed here from the geometry."""
 
     @staticmethod
@@ -143,15 +144,21 @@ class RecommendedResolutionTest(unittest.TestCase):
         with self.assertRaises(_core.InputError):
             _core.resolved_area(vertices, 0, 8.0)
 
-    def test_tenth_percentile_clamps_and_errors(self):
+    def test_tenth_of_the_area_clamps_and_errors(self):
         layout = self.cube(0.1)
         area, vertices = layout["element_area"], layout["element_vertices"]
-        # Fewer than a tenth of tiny elements do not set the resolution; more do, up to the cap.
-        few, many = area.copy(), area.copy()
-        few[:len(area) // 10] = 1e-9
-        many[:len(area) // 10 + 1] = 1e-9
-        self.assertEqual(_core.recommended_resolution(few, vertices), 50)
-        self.assertEqual(_core.recommended_resolution(many, vertices), 1024)
+        # Tiny elements, however many, hold no area and do not set the resolution; smaller elements
+        # that hold a tenth of the area do: a fifth of the elements at a quarter of the area (1 / 21
+        # of the total) do not, half of them (1 / 5) do, N = 2 d sqrt(8 / (0.01 / 4)).
+        tiny, fifth, half = area.copy(), area.copy(), area.copy()
+        tiny[:len(area) // 2] = 1e-9
+        fifth[:len(area) // 5] *= 0.25
+        half[:len(area) // 2] *= 0.25
+        self.assertEqual(_core.recommended_resolution(tiny, vertices), 50)
+        self.assertEqual(_core.recommended_resolution(fifth, vertices), 50)
+        exact = 2 * 0.5 * math.sqrt(3.0) * math.sqrt(8.0 / (0.01 / 4))
+        self.assertEqual(_core.recommended_resolution(half, vertices), 2 * math.ceil(exact / 2))
+        self.assertEqual(_core.recommended_resolution(np.full(10, 1e-9, dtype=np.float32), vertices), 1024)
         self.assertEqual(_core.recommended_resolution(np.full(10, 100.0, dtype=np.float32), vertices), 32)
         self.assertEqual(_core.recommended_resolution(np.zeros(0, dtype=np.float32), vertices), 32)
         with self.assertRaisesRegex(ValueError, "element_vertices"):

@@ -15,8 +15,8 @@ namespace radiosity {
 /// `cells` cells: N = 2 d sqrt(cells / A), clamped to [32, 1024].
 int resolution_for(double area, double distance, double cells);
 
-/// resolution_for the scene's small elements (10th percentile of areas) at a typical distance
-/// (half the diagonal of the elements' bounding box).
+/// resolution_for the scene's small elements (the largest of the smallest elements that hold a
+/// tenth of the total area) at a typical distance (half the diagonal of the elements' bounding box).
 int recommended_resolution(const Elements& elements, double cells = 8.0);
 
 /// The smallest area that resolution N resolves as recommended_resolution judges it: an element of

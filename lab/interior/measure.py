@@ -1,0 +1,115 @@
+"""The interior of lab/interior/level.py against Cycles, in one run: a deep Cycles truth (many
+seeds, cached in --truth; seeds are added until its own noise is below --truth-noise or --seeds is
+reached), Cycles at a ladder of sample counts and the add-on's presets, each timed (CPU seconds of
+this process: all threads). Error: relative RMS luminance per vertex (corner colours averaged per
+vertex; vertices the truth sees below 1% of the mean left out), as measured and with the truth's
+own noise taken out in quadrature.
+
+    blender -b --factory-startup --python-exit-code 1 --python lab/interior/measure.py -- \\
+        --addon-zip build/bake_radiosity.zip --truth /tmp/interior/truth.npz [--truth-samples 1024] \\
+        [--seeds 16] [--ladder 64,256,1024] [--quality DRAFT,MEDIUM,HIGH]
+"""
+
+import argparse
+import os
+import sys
+import time
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [here, os.path.join(here, "..", "..", "blender_tests")]
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import level  # noqa: E402
+
+
+def luminance_per_vertex(mesh, corner_colors):
+    """Mean over each vertex's corners of the luminance (Rec. 709) of (loops, 3) colours."""
+    vertex = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", vertex)
+    y = corner_colors @ np.array([0.2126, 0.7152, 0.0722])
+    return np.bincount(vertex, y, len(mesh.vertices)) / np.maximum(np.bincount(vertex, None, len(mesh.vertices)), 1)
+
+
+def timed(function):
+    cpu, wall = time.process_time(), time.perf_counter()
+    result = function()
+    return result, time.process_time() - cpu, time.perf_counter() - wall
+
+
+def deep_truth(obj, path, samples, seeds, target_noise):
+    """Per-seed vertex luminances, cached in `path` (its vertex positions must match)."""
+    positions = np.empty(len(obj.data.vertices) * 3)
+    obj.data.vertices.foreach_get("co", positions)
+    runs, seconds = [], []
+    if os.path.exists(path):
+        cached = np.load(path)
+        assert np.allclose(cached["positions"], positions) and int(cached["samples"]) == samples, \
+            "the cached truth is of another mesh or sample count: delete %s" % path
+        runs, seconds = list(cached["runs"]), list(cached["seconds"])
+    while len(runs) < seeds:
+        if len(runs) >= 4 and noise_of(np.array(runs)) < target_noise:
+            break
+        colors, cpu, _ = timed(lambda: harness.cycles_corner_bake(obj, samples, 1000 + len(runs)))
+        runs.append(luminance_per_vertex(obj.data, colors))
+        seconds.append(cpu)
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+        np.savez(path, positions=positions, samples=samples, runs=np.array(runs), seconds=np.array(seconds))
+        print("truth: %d seeds of %d samples, noise %.2f%%" % (len(runs), samples, 100 * noise_of(np.array(runs))),
+              flush=True)
+    return np.array(runs), float(np.mean(seconds))
+
+
+def noise_of(runs):
+    """Relative RMS noise per vertex of the mean of `runs` (from their spread), over lit vertices."""
+    mean = runs.mean(axis=0)
+    lit = mean > 0.01 * mean.mean()
+    spread = runs.std(axis=0, ddof=1) / np.sqrt(len(runs))
+    return float(np.sqrt(np.mean((spread[lit] / mean[lit]) ** 2)))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--addon-zip", required=True)
+    parser.add_argument("--truth", required=True)
+    parser.add_argument("--truth-samples", type=int, default=1024)
+    parser.add_argument("--seeds", type=int, default=16)
+    parser.add_argument("--truth-noise", type=float, default=0.003)
+    parser.add_argument("--ladder", default="64,256,1024")
+    parser.add_argument("--quality", default="DRAFT,MEDIUM,HIGH")
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    addon = harness.install_addon(args.addon_zip)
+    obj = level.build()
+    runs, seconds_per_seed = deep_truth(obj, args.truth, args.truth_samples, args.seeds, args.truth_noise)
+    truth = runs.mean(axis=0)
+    truth_noise = noise_of(runs)
+    lit = truth > 0.01 * truth.mean()
+
+    def error(values):
+        measured = float(np.sqrt(np.mean(((values[lit] - truth[lit]) / truth[lit]) ** 2)))
+        return measured, float(np.sqrt(max(measured ** 2 - truth_noise ** 2, 0.0)))
+
+    print("interior: %d faces, %d vertices (%d lit), %d lamps; truth %d seeds x %d samples (%.0f CPU s a seed), "
+          "its noise %.2f%%; load %.1f" % (len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights),
+                                          len(runs), args.truth_samples, seconds_per_seed, 100 * truth_noise,
+                                          os.getloadavg()[0]), flush=True)
+    for samples in [int(s) for s in args.ladder.split(",") if s]:
+        colors, cpu, wall = timed(lambda: harness.cycles_corner_bake(obj, samples, 7))
+        measured, clean = error(luminance_per_vertex(obj.data, colors))
+        print("Cycles %5d samples: %6.1f CPU s, %6.1f wall s: %.2f%% (%.2f%% without the truth's noise)"
+              % (samples, cpu, wall, 100 * measured, 100 * clean), flush=True)
+    for quality in args.quality.split(","):
+        summary, cpu, wall = timed(lambda: addon.bake(bpy.context.scene, quality=quality))
+        colors = harness.corner_colors(obj.data, "Radiosity")
+        measured, clean = error(luminance_per_vertex(obj.data, colors))
+        mean_ratio = float(luminance_per_vertex(obj.data, colors)[lit].mean() / truth[lit].mean())
+        print("%-6s %5d elements, %s, resolution %d: %6.1f CPU s, %6.1f wall s: %.2f%% (%.2f%% without the "
+              "truth's noise), mean %.4f of the truth" % (quality, summary["elements"], summary["method"],
+                                                           summary["resolution"], cpu, wall, 100 * measured,
+                                                           100 * clean, mean_ratio), flush=True)
+    print("load %.1f" % os.getloadavg()[0])
+
+
+main()
