@@ -106,9 +106,9 @@ def main():
         measured, clean = error(luminance_per_vertex(obj.data, colors))
         mean_ratio = float(luminance_per_vertex(obj.data, colors)[lit].mean() / truth[lit].mean())
         print("%-6s %5d elements, %s, resolution %d: %6.1f CPU s, %6.1f wall s: %.2f%% (%.2f%% without the "
-              "truth's noise), mean %.4f of the truth" % (quality, summary["elements"], summary["method"],
-                                                           summary["resolution"], cpu, wall, 100 * measured,
-                                                           100 * clean, mean_ratio), flush=True)
+              "truth's noise), mean %.4f of the truth"
+              % (quality, summary["elements"], summary["method"], summary["resolution"], cpu, wall, 100 * measured,
+                 100 * clean, mean_ratio), flush=True)
     print("load %.1f" % os.getloadavg()[0])
 
 
