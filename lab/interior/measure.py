@@ -92,9 +92,9 @@ def main():
         return measured, float(np.sqrt(max(measured ** 2 - truth_noise ** 2, 0.0)))
 
     print("interior: %d faces, %d vertices (%d lit), %d lamps; truth %d seeds x %d samples (%.0f CPU s a seed), "
-          "its noise %.2f%%; load %.1f" % (len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights),
-                                          len(runs), args.truth_samples, seconds_per_seed, 100 * truth_noise,
-                                          os.getloadavg()[0]), flush=True)
+          "its noise %.2f%%; load %.1f"
+          % (len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights), len(runs), args.truth_samples,
+             seconds_per_seed, 100 * truth_noise, os.getloadavg()[0]), flush=True)
     for samples in [int(s) for s in args.ladder.split(",") if s]:
         colors, cpu, wall = timed(lambda: harness.cycles_corner_bake(obj, samples, 7))
         measured, clean = error(luminance_per_vertex(obj.data, colors))
