@@ -9,7 +9,6 @@ lamps, coloured Lambert materials, inside corners everywhere. Built with numpy a
 import math
 
 import bpy
-import numpy as np
 
 import scenes
 
