@@ -218,7 +218,7 @@ def _choose(settings, exported, zonal, size, preset, gathered):
     core = native.core()
     layout = core.elements(exported.positions, exported.face_offsets, exported.corner_vertices,
                            exported.reflectance, exported.emission, exported.material, element_size=element_size,
-                           max_element_aspect=max_element_aspect)
+                           max_element_aspect=max_element_aspect, front_only=exported.front_only)
     elements = int(layout["elements"])
     if preset is None:
         resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only

@@ -44,6 +44,7 @@ class ExportedScene:
     reflectance: np.ndarray     # (F,3) float32
     emission: np.ndarray        # (F,3) float32
     material: np.ndarray        # (F,) int32: one id per material, lamps get their own
+    front_only: np.ndarray      # (F,) uint8: 1 = emits from its front only (area lamps; faces emit from both sides)
     lights: list
     parts: list
     warnings: list = field(default_factory=list)
@@ -96,6 +97,7 @@ class _Builder:
         self.polygon_material = []
         self.material_ids = {}          # material name (None = no material) -> id
         self.surfaces = []              # id -> Surface
+        self.lamp_ids = []              # the ids of area lamps, which emit from their front only
         self.parts, self.lights, self.warnings = [], [], []
         self.lamp_problems = {}         # problem -> [lamp name or (name, detail)], said once each
         self.vertex_total = self.polygon_total = self.corner_total = 0
@@ -170,6 +172,7 @@ class _Builder:
             self._note_lamp_problems(problems)
             # Each lamp is its own black emitter (own material id: no blending with neighbours).
             self.surfaces.append(materials.Surface(np.zeros(3), radiance))
+            self.lamp_ids.append(len(self.surfaces) - 1)
             self.positions.append(vertices)
             self.counts.append(np.full(len(quads), 4, dtype=np.int32))
             self.corners.append(quads.ravel().astype(np.int32) + self.vertex_total)
@@ -201,6 +204,7 @@ class _Builder:
             reflectance=reflectance[material] if len(material) else np.zeros((0, 3), np.float32),
             emission=emission[material] if len(material) else np.zeros((0, 3), np.float32),
             material=material.astype(np.int32),
+            front_only=np.isin(material, self.lamp_ids).astype(np.uint8),
             lights=self.lights, parts=self.parts, warnings=self.warnings,
         )
 

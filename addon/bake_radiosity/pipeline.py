@@ -129,7 +129,8 @@ class BakeJob:
         with core_errors_as_bake_errors():
             layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
                                             e.emission, e.material, element_size=self.choice.element_size,
-                                            max_element_aspect=self.choice.max_element_aspect)
+                                            max_element_aspect=self.choice.max_element_aspect,
+                                            front_only=e.front_only)
         return layout["element_vertices"], layout["element_corners"], layout["element_back"]
 
     def _run_core(self, method, max_iterations, progress):
@@ -139,7 +140,7 @@ class BakeJob:
                 e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
                 element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
                 max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-                lights=e.lights, max_bytes=c.budget_bytes, progress=progress)
+                lights=e.lights, max_bytes=c.budget_bytes, progress=progress, front_only=e.front_only)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
             over_relaxation = ({"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION}
@@ -151,6 +152,7 @@ class BakeJob:
             element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
             max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
             lights=e.lights, matrix_budget_bytes=c.budget_bytes, progress=progress,
+            front_only=e.front_only,
             ambient=method == "progressive")  # brightens only the preview, never the result
 
     def write(self, scene):

@@ -22,8 +22,9 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      std::size_t matrix_budget_bytes,
                      const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
                      std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
-                     int gather_shadow_rays, float direct_emitter_area) {
-    const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
+                     int gather_shadow_rays, float direct_emitter_area, const std::optional<Array<uint8_t>>& front_only) {
+    const SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
     // The stability settings of docs/stability.md; the core checks their ranges (ValueError).
@@ -56,8 +57,9 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
 py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                         const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                         const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                        float element_size, float max_element_aspect) {
-    const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
+                        float element_size, float max_element_aspect, const std::optional<Array<uint8_t>>& front_only) {
+    const SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     if (!(element_size >= 0.0f)) throw InputError("element_size must be >= 0");
     BuildResult build;
     {
@@ -114,11 +116,12 @@ void bind_bake(py::module_& m) {
           "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1,
           "final_gather"_a = false, "gather_rays"_a = FinalGatherSettings().rays,
           "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays,
-          "direct_emitter_area"_a = BakeSettings().direct_emitter_area);
+          "direct_emitter_area"_a = BakeSettings().direct_emitter_area, "front_only"_a = py::none());
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "max_element_aspect"_a = 0.0f);
+          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "max_element_aspect"_a = 0.0f,
+          "front_only"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",

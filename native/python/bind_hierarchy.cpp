@@ -35,8 +35,9 @@ py::dict bake_hierarchical_arrays(const Array<float>& positions, const Array<int
                                   const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                                   float element_size, double refine_tolerance, double tolerance, int max_iterations,
                                   float hard_edge_angle, const py::list& lights, std::size_t max_elements,
-                                  std::size_t max_bytes, const py::object& progress) {
-    const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
+                                  std::size_t max_bytes, const py::object& progress, const std::optional<Array<uint8_t>>& front_only) {
+    const SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     HierarchySettings settings;
     settings.min_element_size = element_size;
     settings.refine_tolerance = refine_tolerance;
@@ -91,7 +92,8 @@ void bind_hierarchy(py::module_& m) {
           "material"_a = py::none(), py::kw_only(), "element_size"_a = HierarchySettings().min_element_size,
           "refine_tolerance"_a = HierarchySettings().refine_tolerance, "tolerance"_a = 1e-4,
           "max_iterations"_a = 1000, "hard_edge_angle"_a = 0.5235988f, "lights"_a = py::list(),
-          "max_elements"_a = ElementLimits().max_elements, "max_bytes"_a = 0, "progress"_a = py::none());
+          "max_elements"_a = ElementLimits().max_elements, "max_bytes"_a = 0, "progress"_a = py::none(),
+          "front_only"_a = py::none());
 }
 
 }  // namespace radiosity::python

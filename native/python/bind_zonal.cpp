@@ -71,8 +71,9 @@ py::dict bake_with_media_arrays(const Array<float>& positions, const Array<int32
                                 int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
                                 std::size_t matrix_budget_bytes, const py::object& progress,
                                 const py::list& media_list, int zone_resolution, int grid_subdivision,
-                                bool merge_uniform_zones, double over_relaxation) {
-    const SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material);
+                                bool merge_uniform_zones, double over_relaxation, const std::optional<Array<uint8_t>>& front_only) {
+    const SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
     settings.solve.over_relaxation = over_relaxation;  // the core checks its range (ValueError)
@@ -177,7 +178,7 @@ void bind_zonal(py::module_& m) {
           "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
           "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes, "progress"_a = py::none(),
           "media"_a = py::list(), "zone_resolution"_a = 32, "grid_subdivision"_a = 3, "merge_uniform_zones"_a = true,
-          "over_relaxation"_a = 1.0);
+          "over_relaxation"_a = 1.0, "front_only"_a = py::none());
     m.def("principled_volume", &principled_volume_arrays,
           "Cycles' Principled Volume per voxel (blackbody excluded): {scattering, absorption, emission}, "
           "each shape + (3,), from density and emission_strength grids of one shape.",

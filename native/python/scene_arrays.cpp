@@ -24,7 +24,8 @@ py::array_t<int32_t> corner_index_array(const std::vector<std::array<int32_t, 4>
 
 SceneInput scene_input(const Array<float>& positions, const Array<int32_t>& face_offsets,
                        const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
-                       const Array<float>& emission, const std::optional<Array<int32_t>>& material) {
+                       const Array<float>& emission, const std::optional<Array<int32_t>>& material,
+                       const std::optional<Array<uint8_t>>& front_only) {
     require_shape(positions, "positions", -1, 3);
     require_shape(face_offsets, "face_offsets", -1, 0);
     if (face_offsets.shape(0) < 1) throw InputError("face_offsets needs face_count + 1 entries (at least one)");
@@ -33,6 +34,7 @@ SceneInput scene_input(const Array<float>& positions, const Array<int32_t>& face
     require_shape(reflectance, "reflectance", faces, 3);
     require_shape(emission, "emission", faces, 3);
     if (material) require_shape(*material, "material", faces, 0);
+    if (front_only) require_shape(*front_only, "front_only", faces, 0);
     if (face_offsets.at(faces) != corner_vertices.shape(0))
         throw InputError("face_offsets[-1] must equal len(corner_vertices)");
 
@@ -45,6 +47,7 @@ SceneInput scene_input(const Array<float>& positions, const Array<int32_t>& face
     input.reflectance = reflectance.data();
     input.emission = emission.data();
     input.material = material ? material->data() : nullptr;
+    input.front_only = front_only ? front_only->data() : nullptr;
     return input;
 }
 

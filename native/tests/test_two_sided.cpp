@@ -128,6 +128,21 @@ TEST(TwoSided, BackSideLightsWhatItFacesInTheUniformBake) {
     }
 }
 
+TEST(TwoSided, FrontOnlyEmittersHaveNoBackSide) {
+    // An emitter marked front only (an area lamp in Cycles) gets no back side: the receiver under
+    // its back stays black, and the power counts its front alone, in both bakes.
+    test::SceneArrays scene = emitter_back_over_receiver(0.0);
+    std::vector<uint8_t> front_only{1, 0};
+    SceneInput input = scene.input();
+    input.front_only = front_only.data();
+    const BakeResult r = bake(input, uniform(Method::GaussSeidel));
+    EXPECT_TRUE(r.build.elements.side.empty());  // nothing two-sided
+    EXPECT_EQ(front_mean(r.build.elements, r.solve.radiance, 1), 0.0);
+    EXPECT_NEAR(power(r.build.elements, r.solve.radiance).emitted / (M_PI * kEmitted), 1.0, 1e-6);
+    const HierarchyResult h = bake_hierarchical(input, hierarchical());
+    EXPECT_EQ(front_mean(h.output, h.output_radiance, 1), 0.0);
+}
+
 TEST(TwoSided, BackSideLightsWhatItFacesInTheHierarchicalBake) {
     const test::SceneArrays scene = emitter_back_over_receiver(0.0);
     const double expected = kRho * kFactor * kEmitted;

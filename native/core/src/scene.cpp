@@ -29,6 +29,8 @@ using detail::DVec3;
 
 double max_component(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
+bool emits_front_only(const SceneInput& in, std::size_t f) { return in.front_only != nullptr && in.front_only[f] != 0; }
+
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
     throw InputError("polygon " + std::to_string(polygon) + ": " + what);
 }
@@ -242,17 +244,17 @@ struct Piece {
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
-                               const Rgb& rho, const Rgb& emitted, float max_edge, const ElementLimits& limits,
-                               std::size_t& back_sides) {
+                               const Rgb& rho, const Rgb& emitted, bool emits_behind, float max_edge,
+                               const ElementLimits& limits, std::size_t& back_sides) {
     const int count = static_cast<int>(p.size());
     const detail::SliverSplit sliver =
         count == 3 ? detail::split_sliver(p[0], p[1], p[2], limits.max_aspect) : detail::SliverSplit{};
     std::vector<DVec3> points = p;  // a cap sliver's altitude foot joins as point 3
     if (sliver.at_foot) points.push_back(sliver.foot);
     auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
-    // Counts first, checked against the cap in double, before any element is made. An emitting
-    // polygon's elements each get a back side (add_back_sides): they count twice.
-    const bool emits = max_component(emitted) > 0.0;
+    // Counts first, checked against the cap in double, before any element is made. A polygon that
+    // emits from both sides has its elements each get a back side (add_back_sides): they count twice.
+    const bool emits = emits_behind;
     auto check_cap = [&](double elements) {
         if (emits) elements *= 2.0;
         if (double(out.size() + back_sides) + elements > double(limits.max_elements)) {
@@ -348,17 +350,18 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     return corners;
 }
 
-/// Emitting polygons emit from both sides, as in Cycles: each of their elements gets a twin on
+/// Emitting polygons emit from both sides, as in Cycles (except those marked front only, Cycles'
+/// area lamps: SceneInput::front_only): each of their elements gets a twin on
 /// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
 /// front's vertices, so that everything that renders or traces the elements sees the two sides
 /// at exactly one place; its cut-edge bits follow its reversed corners. `back_sides` is their
 /// count, which subdivide() checked against the element cap.
-void add_back_sides(Elements& out, std::size_t back_sides) {
+void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides) {
     if (back_sides == 0) return;
     const std::size_t fronts = out.size();
     out.side.assign(fronts, Elements::kOneSided);
     for (std::size_t e = 0; e < fronts; ++e) {
-        if (!(max_component(out.emission[e]) > 0.0)) continue;
+        if (!(max_component(out.emission[e]) > 0.0) || emits_front_only(in, std::size_t(out.polygon[e]))) continue;
         out.side[e] = Elements::kFront;
         const std::array<int32_t, 4> c = out.corners[e];
         const bool triangle = c[3] < 0;
@@ -410,9 +413,10 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const int32_t first = in.face_offsets[f];
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
+        const bool emits_behind = max_component(emitted) > 0.0 && !emits_front_only(in, f);
         const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
-            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, max_edge, limits, back_sides);
+            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -420,14 +424,15 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const double tolerance = detail::plane_tolerance(p);
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
-            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, max_edge, limits, back_sides);
+            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, max_edge, limits,
+                                                         back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }
         detail::mark_cut_edges(out, first_element, segments_begin, segments_end, tolerance);
         cut = cut_end;
     }
-    add_back_sides(out, back_sides);
+    add_back_sides(out, in, back_sides);
     return result;
 }
 

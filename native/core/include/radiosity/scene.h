@@ -22,6 +22,9 @@ struct SceneInput {
     const float* reflectance = nullptr;       ///< face_count x 3, each in [0, 1)
     const float* emission = nullptr;          ///< face_count x 3, emitted radiance, >= 0
     const int32_t* material = nullptr;        ///< face_count ids; corners never blend across ids. May be null.
+    /// face_count flags: an emitting face that emits from its front only, as Cycles' area lamps do
+    /// (other emitting faces emit from both sides, Elements::side). May be null: none.
+    const uint8_t* front_only = nullptr;
 };
 
 /// The unknowns of the radiosity system: small planar triangles or quads, each a uniform
