@@ -8,6 +8,7 @@
 #include "radiosity/near_field.h"
 #include "stratified.h"
 #include "weld.h"
+#include "world_light.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -50,10 +51,11 @@ std::vector<int32_t> twins(const Elements& elements) {
 class Gatherer {
 public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-             const std::vector<Rgb>& corner_field, const Lights& lights, const FinalGatherSettings& settings,
-             const std::vector<Emitter>& emitters, const hr::Visibility& visibility, float scene_size)
+             const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
+             const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
+             const hr::Visibility& visibility, float scene_size)
         : elements_(elements), emitted_(emitted), radiance_(radiance), corner_field_(corner_field), lights_(lights),
-          emitters_(emitters),
+          world_(world), emitters_(emitters),
           visibility_(visibility), scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -178,6 +180,7 @@ private:
             light += source.radiance * (s.factor * share_seen);
         }
         if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
         return light;
     }
 
@@ -223,6 +226,7 @@ private:
     const std::vector<Rgb>& radiance_;
     const std::vector<Rgb>& corner_field_;
     const Lights& lights_;
+    const WorldSampler& world_;
     const std::vector<Emitter>& emitters_;
     const hr::Visibility& visibility_;
     float scene_size_;
@@ -232,7 +236,7 @@ private:
 }  // namespace
 
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
-                          const std::vector<Rgb>& radiance, const Lights& lights,
+                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
                           const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
                           CornerColors& colors, const ProgressFn& progress) {
     GatherCounts counts;
@@ -265,8 +269,9 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         emitters.push_back(source);
     }
     const std::vector<Rgb> corner_field = colors.element_corner;  // interpolated, before the gather replaces any
-    const Gatherer gatherer(elements, emitted, radiance, corner_field, lights, settings, emitters, visibility,
-                            scene_size);
+    const WorldSampler world_sampler(world);
+    const Gatherer gatherer(elements, emitted, radiance, corner_field, lights, world_sampler, settings, emitters,
+                            visibility, scene_size);
     // Polygon centres (area-weighted element centres) for points buried at their element.
     std::vector<glm::dvec3> polygon_sum;
     std::vector<double> polygon_area;
