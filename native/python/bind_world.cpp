@@ -5,9 +5,10 @@
 
 namespace radiosity::python {
 
-WorldLight parse_world(const py::object& map, int samples) {
+WorldLight parse_world(const py::object& map, int samples, int point_samples) {
     WorldLight world;
     world.samples = samples;
+    world.point_samples = point_samples;
     if (map.is_none()) return world;
     const Array<float> pixels = map.cast<Array<float>>();
     if (pixels.ndim() != 3 || pixels.shape(2) != 3 || pixels.shape(0) < 1 || pixels.shape(1) < 1)

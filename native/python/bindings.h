@@ -21,6 +21,6 @@ Lights parse_lights(const py::list& lamps);
 
 /// The world's light from None (no world) or a float (height, width, 3) equirectangular map,
 /// bottom row first (world.h); ValueError for another shape, a negative or non-finite value.
-WorldLight parse_world(const py::object& map, int samples);
+WorldLight parse_world(const py::object& map, int samples, int point_samples);
 
 }  // namespace radiosity::python

@@ -65,7 +65,7 @@ TEST(World, OnePixelLightsTheDirectionsOfCyclesConvention) {
     world.height = 4;
     world.radiance.assign(32, Rgb(0.0));
     world.radiance[2 * 8 + 2] = Rgb(1.0);
-    world.samples = 4096;
+    world.point_samples = 4096;
     test::SceneArrays s;  // a speck far below, so nothing occludes
     s.add_quad({-0.01f, -0.01f, -5}, {0.01f, -0.01f, -5}, {0.01f, 0.01f, -5}, {-0.01f, 0.01f, -5}, Rgb(0.5));
     const Elements e = build_elements(s.input(), 0.0f, ElementLimits()).elements;
@@ -119,7 +119,7 @@ TEST(World, SmallSunDiscIsFoundByImportanceSampling) {
     test::SceneArrays s;
     s.add_quad({-0.01f, -0.01f, -5}, {0.01f, -0.01f, -5}, {0.01f, 0.01f, -5}, {-0.01f, 0.01f, -5}, Rgb(0.5));
     const Elements e = build_elements(s.input(), 0.0f, ElementLimits()).elements;
-    world.samples = 256;
+    world.point_samples = 256;
     const Rgb E = world_irradiance_at(e, world, {Vec3(0.0f)}, {Vec3(0, 0, 1)})[0];
     EXPECT_GT(truth, 10.0 * M_PI);  // the sun dominates
     EXPECT_NEAR(E.r, truth, 0.01 * truth);

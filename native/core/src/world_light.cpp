@@ -76,21 +76,24 @@ void WorldLight::check() const {
     for (const Rgb& c : radiance)
         if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b) || c.r < 0 || c.g < 0 || c.b < 0)
             throw InputError("world: the map's radiance must be finite and >= 0");
-    if (samples < 1) throw InputError("world: samples must be >= 1");
+    if (samples < 1 || point_samples < 1) throw InputError("world: samples and point_samples must be >= 1");
 }
 
 namespace detail {
 
 WorldSampler::WorldSampler(const WorldLight& world) : world_(world), empty_(world.empty()) {
     if (empty_) return;
-    const int samples = std::max(1, world.samples);
     const bool uniform = std::all_of(world.radiance.begin(), world.radiance.end(),
                                      [&](const Rgb& c) { return c == world.radiance.front(); });
-    if (uniform) {
-        cos_grid_ = int(std::ceil(std::sqrt(double(samples)) - 1e-9));
-        return;
-    }
-    cos_grid_ = map_grid_ = std::max(1, int(std::ceil(std::sqrt(samples / 2.0) - 1e-9)));
+    // Square grids: all for the cosine on a uniform map, half each otherwise.
+    auto grid = [&](int samples) {
+        return std::max(1, int(std::ceil(std::sqrt(std::max(1, samples) / (uniform ? 1.0 : 2.0)) - 1e-9)));
+    };
+    cos_grid_ = grid(world.samples);
+    point_cos_grid_ = grid(world.point_samples);
+    if (uniform) return;
+    map_grid_ = cos_grid_;
+    point_map_grid_ = point_cos_grid_;
     const std::size_t W = std::size_t(world.width), H = std::size_t(world.height);
     pixel_pdf_.assign(W * H, 0.0);
     pixel_cdf_.assign(W * H, 0.0);

@@ -26,12 +26,12 @@ public:
     /// along which nothing hides the sky. Deterministic in `seed`. Thread-safe.
     Rgb irradiance(const hr::Visibility& visibility, const Vec3& origin, const Vec3& normal, uint32_t seed,
                    int cos_grid, int map_grid) const;
-    /// The same with the grids WorldLight::samples asks for.
+    /// The same with the grids WorldLight::point_samples asks for.
     Rgb irradiance(const hr::Visibility& visibility, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        return irradiance(visibility, origin, normal, seed, cos_grid_, map_grid_);
+        return irradiance(visibility, origin, normal, seed, point_cos_grid_, point_map_grid_);
     }
 
-    /// Samples per strategy: grid x grid each (0 map samples for a uniform map).
+    /// Samples per strategy for WorldLight::samples: grid x grid each (0 map samples for a uniform map).
     int cos_grid() const { return cos_grid_; }
     int map_grid() const { return map_grid_; }
 
@@ -47,7 +47,7 @@ private:
 
     const WorldLight& world_;
     bool empty_ = true;
-    int cos_grid_ = 0, map_grid_ = 0;
+    int cos_grid_ = 0, map_grid_ = 0, point_cos_grid_ = 0, point_map_grid_ = 0;
     std::vector<double> row_cdf_;    ///< height entries, the last 1
     std::vector<double> pixel_cdf_;  ///< width entries per row, each row's last 1
     std::vector<double> pixel_pdf_;  ///< probability of each pixel
