@@ -97,14 +97,10 @@ class BakeJob:
         self.warnings += auto_settings.warnings_for(self.choice)
         if self.world is not None and not self.world_baked():
             if self.lit_by() == "nothing":
-                raise BakeError("Only the World lights the scene, and its light is not baked %s yet: %s" % (
-                    "with media (fog, smoke)" if self.media.media else "by the hierarchical method",
-                    "add a lamp or an emitting mesh" if self.media.media else
-                    "choose Gauss-Seidel or progressive refinement"))
-            self.warnings.append("The World's light is not baked %s: the result has no sky light; %s" % (
-                ("with media (fog, smoke)", "bake the surfaces without the Volume objects to see it")
-                if self.media.media else
-                ("by the hierarchical method", "choose Gauss-Seidel or progressive refinement to bake it")))
+                raise BakeError("Only the World lights the scene, and its light is not baked with media (fog, "
+                                "smoke) yet: add a lamp or an emitting mesh")
+            self.warnings.append("The World's light is not baked with media (fog, smoke) yet: the result has no "
+                                 "sky light; bake the surfaces without the Volume objects to see it")
 
     @property
     def method(self):
@@ -147,7 +143,8 @@ class BakeJob:
                 e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
                 element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
                 max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-                lights=e.lights, max_bytes=c.budget_bytes, progress=progress)
+                lights=e.lights, max_bytes=c.budget_bytes, progress=progress,
+                world=self.world.radiance if self.world is not None else None)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
             over_relaxation = ({"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION}
@@ -204,7 +201,7 @@ class BakeJob:
         return summary
 
     def world_baked(self):
-        return self.world is not None and not self.media.media and self.method != "hierarchical"
+        return self.world is not None and not self.media.media
 
     def world_summary(self):
         """The World's light as baked: its name, whether Cycles rendered it, its map size; None if none."""

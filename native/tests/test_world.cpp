@@ -3,6 +3,7 @@
 /// a roof (Howell's parallel squares), one lit pixel of the map, and a small sun disc that only
 /// importance sampling finds with few rays.
 #include "radiosity/bake.h"
+#include "radiosity/hierarchy.h"
 #include "radiosity/world.h"
 #include "test_util.h"
 
@@ -53,6 +54,36 @@ TEST(World, FloorUnderRoofMissesTheRoofsFormFactor) {
 
     const std::vector<Rgb> E = world_irradiance_at(e, settings.world, {Vec3(0.5f, 0.5f, 0.0f)}, {Vec3(0, 0, 1)});
     EXPECT_NEAR(E[0].g, M_PI * (1.0 - kParallelCentre), 0.002 * M_PI * (1.0 - kParallelCentre));
+}
+
+/// The hierarchical bake: the same lone plane, exact at every corner and leaf.
+TEST(World, HierarchicalLonePlaneIsRhoTimesSkyExactly) {
+    test::SceneArrays s;
+    const Rgb W(0.3, 0.6, 1.2);
+    s.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(0.5));
+    HierarchySettings settings;
+    settings.world = WorldLight::uniform(W, 64);
+    const HierarchyResult r = bake_hierarchical(s.input(), settings);
+    for (const Rgb& L : r.output_radiance)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(L[c], 0.5 * W[c], 1e-12 * W[c]);
+    ASSERT_EQ(r.colors.input_corner.size(), 4u);
+    for (const Rgb& L : r.colors.input_corner)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(L[c], 0.5 * W[c], 1e-6 * W[c]);
+}
+
+/// The hierarchical bake's corners show the world's light as it is there: a floor corner under a
+/// black roof (the same unit square, one above) misses the roof's factor from a point under a
+/// rectangle's corner, (1 / pi) X / sqrt(1 + X^2) atan(Y / sqrt(1 + X^2)) doubled for X = Y = 1.
+TEST(World, HierarchicalCornersShowTheWorldAsItIsThere) {
+    const test::SceneArrays s = test::opposed_unit_squares(1.0f, Rgb(0.5), Rgb(0.0));
+    HierarchySettings settings;
+    settings.world = WorldLight::uniform(Rgb(1.0));
+    settings.world.point_samples = 16384;
+    const HierarchyResult r = bake_hierarchical(s.input(), settings);
+    const double corner_factor = 2.0 / (2.0 * M_PI) * std::sqrt(0.5) * std::atan(std::sqrt(0.5));
+    ASSERT_EQ(r.colors.input_corner.size(), 8u);
+    for (std::size_t k = 4; k < 8; ++k)  // the floor's corners
+        EXPECT_NEAR(r.colors.input_corner[k].g, 0.5 * (1.0 - corner_factor), 0.003 * 0.5) << k;
 }
 
 /// A map black but for one pixel: u in [1/4, 3/8) (azimuth 45 to 90 degrees, from +x towards +y),

@@ -176,6 +176,40 @@ void WorldSampler::add(const hr::Visibility& visibility, const Vec3& origin, con
     sum += world_.radiance[pixel_of(world_, w)] * (cosine / density);
 }
 
+std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world,
+                                        const hr::Visibility& visibility, float scene_size,
+                                        const ProgressFn& progress) {
+    std::vector<Rgb> light(4 * mesh.size(), Rgb(0.0));
+    const WorldSampler sampler(world);
+    if (sampler.empty()) return light;
+    // One evaluation per (vertex, polygon): the first slot that has it computes, the others copy.
+    std::vector<std::pair<std::pair<int32_t, int32_t>, std::size_t>> keys;
+    for (std::size_t e = 0; e < mesh.size(); ++e)
+        if (std::max({mesh.reflectance[e].r, mesh.reflectance[e].g, mesh.reflectance[e].b}) > 0.0)
+            for (int k = 0; k < (mesh.is_triangle(e) ? 3 : 4); ++k)
+                keys.push_back({{mesh.corners[e][k], mesh.polygon[e]}, 4 * e + std::size_t(k)});
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::size_t> first;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        if (i == 0 || keys[i].first != keys[i - 1].first) first.push_back(i);
+    const float lift = 1e-5f * scene_size;
+    parallel_rows("output", first.size(), 64, 0, progress, [&](std::size_t g) {
+        const std::size_t slot = keys[first[g]].second, e = slot / 4;
+        const Vec3 corner = mesh.vertices[std::size_t(keys[first[g]].first.first)];
+        const Vec3 x = corner + 1e-4f * (mesh.centre[e] - corner);
+        const Vec3 n = mesh.normal[e];
+        const uint32_t seed = mix_seed(uint32_t(keys[first[g]].first.first), 0x3011DU);
+        const Rgb E = sampler.irradiance(visibility, x + lift * n, n, seed);
+        const std::size_t end = g + 1 < first.size() ? first[g + 1] : keys.size();
+        for (std::size_t i = first[g]; i < end; ++i) {
+            const std::size_t s = keys[i].second;
+            light[s] = mesh.reflectance[s / 4] * E / M_PI;
+        }
+        return true;
+    });
+    return light;
+}
+
 }  // namespace detail
 
 std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& world, const ProgressFn& progress) {

@@ -53,4 +53,12 @@ private:
     std::vector<double> pixel_pdf_;  ///< probability of each pixel
 };
 
+/// The world's first reflection, rho E / pi, at each corner of `mesh` (4 slots per element, the
+/// 4th of a triangle zero), a hair inside the element: computed once per vertex and polygon (the
+/// faces of one polygon around a vertex share it), with WorldLight::point_samples rays seeded by
+/// the vertex. Zero for elements that reflect nothing. Progress phase "output"; throws Cancelled.
+std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world,
+                                        const hr::Visibility& visibility, float scene_size,
+                                        const ProgressFn& progress);
+
 }  // namespace radiosity::detail
