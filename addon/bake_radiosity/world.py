@@ -195,6 +195,7 @@ def render_map(world, width=MAP_WIDTH, height=MAP_HEIGHT, samples=MAP_SAMPLES, r
         if scene is not None:
             bpy.data.scenes.remove(scene)
         for result in [i for i in bpy.data.images if i.type == "RENDER_RESULT" and i.name not in render_results]:
+            result.user_clear()  # its user is the render itself, gone now
             bpy.data.images.remove(result)  # the render's own Render Result image, if the file had none
         shutil.rmtree(folder, ignore_errors=True)
 
