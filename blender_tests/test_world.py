@@ -6,6 +6,7 @@ room, and Cycles' bake of the lamp's room is a second, far less noisy reference 
 The hierarchical method bakes both rooms too, against its own accuracy on the lamp's.
 
 Also: a scene lit only by the World bakes and says so; a black World and no lamp is "no light";
+a bake with media warns that it leaves the World out, and refuses a scene only the World lights;
 the World rendered for its map leaves the file as it was (test_world_hdri.py bakes that World)."""
 
 import math
@@ -18,6 +19,7 @@ import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 
 import harness  # noqa: E402
+import media_scenes  # noqa: E402
 import scenes  # noqa: E402
 import world_scenes  # noqa: E402
 
@@ -115,5 +117,23 @@ def test_world_render_leaves_the_file_as_it_was():
             sorted(bpy.data.images.keys()), bpy.context.scene.name, bpy.context.scene.camera) == state
 
 
+def test_media_say_the_world_is_left_out():
+    media_scenes.fog_box_scene(args.work)
+    world_scenes.uniform_world(world_scenes.SKY_RADIANCE)
+    view_layer, depsgraph = pipeline.view_layer_and_depsgraph(bpy.context.scene)
+    job = pipeline.BakeJob(bpy.context.scene, depsgraph, view_layer)
+    assert any("World's light is not baked with media" in w for w in job.warnings), job.warnings
+    bpy.data.objects.remove(bpy.data.objects["Lamp"])
+    before = harness.file_state()
+    try:
+        addon.bake(bpy.context.scene)
+    except pipeline.BakeError as error:
+        assert "Only the World lights the scene" in str(error) and "media" in str(error), error
+    else:
+        raise AssertionError("a scene with media lit only by the World baked")
+    assert harness.file_state() == before
+
+
 harness.run(test_world_render_leaves_the_file_as_it_was, test_a_black_world_and_no_lamp_is_no_light,
+            test_media_say_the_world_is_left_out,
             test_uniform_world_through_a_window_by_the_operator)
