@@ -93,9 +93,9 @@ def sky_image(folder, width=256, height=128):
     sun = np.arccos(np.clip(direction @ np.array(SUN_DIRECTION), -1, 1)) < SUN_RADIUS
     pixels[sun] = SUN_RADIANCE
     image = bpy.data.images.new("Sky", width, height, float_buffer=True)
+    image.colorspace_settings.is_data = True  # saved as the numbers set, not converted for display
     rgba = np.concatenate([pixels, np.ones((height, width, 1))], axis=-1).astype(np.float32)
     image.pixels.foreach_set(rgba.ravel())
-    image.colorspace_settings.is_data = True  # saved as the numbers set, not converted for display
     path = os.path.join(tempfile.mkdtemp(dir=folder), "sky.exr")
     image.filepath_raw = path
     image.file_format = "OPEN_EXR"
