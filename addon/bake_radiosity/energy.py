@@ -1,6 +1,9 @@
 """Where the light went: the power the solve was given against the power surfaces absorbed,
 from the solved element radiance (numpy, no bpy).
 
+Lamps' and the World's light arrive as power: each element's first reflection of it, rho E / pi,
+is in its emission (element_emission), so it counts as emitted here.
+
 In radiance units an element reflects pi A (L - E) = pi A rho H watts of the light H it receives,
 so it absorbs pi A (1 - rho) H = pi A (1 - rho) / rho (L - E). What was emitted and not absorbed
 by a reflecting surface left the scene, fell on a black surface (a lamp, an emitter) or leaked.
@@ -15,7 +18,7 @@ import numpy as np
 
 @dataclass(frozen=True)
 class EnergyBalance:
-    emitted: float    # watts, mean of R, G, B: surfaces' emission plus lamps' first reflection
+    emitted: float    # watts, mean of R, G, B: surfaces' emission plus lamps' and the World's first reflection
     absorbed: float   # watts absorbed by surfaces that reflect (rho > 0)
     leaving: float    # watts leaving all surfaces (emitted + reflected)
 

@@ -9,7 +9,7 @@ import time
 import bpy
 
 from . import (auto_settings, energy, error_estimate, export, facing, media_energy, media_export, media_writeback,
-               native, outliers, writeback)
+               native, outliers, world, writeback)
 from .errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
@@ -64,10 +64,10 @@ class BakeJob:
     def __init__(self, scene, depsgraph, view_layer, overrides=None):
         self.settings = settings_of(scene, overrides)
         with core_errors_as_bake_errors():
-            self._prepare(depsgraph, view_layer)
+            self._prepare(scene, depsgraph, view_layer)
         self.result = None
 
-    def _prepare(self, depsgraph, view_layer):
+    def _prepare(self, scene, depsgraph, view_layer):
         start = time.perf_counter()
         announce("exporting view layer '%s'" % view_layer.name)
         self.exported = export.export_scene(depsgraph, view_layer)
@@ -85,17 +85,25 @@ class BakeJob:
         if self.media.media and self.exported.lights:
             raise BakeError("Point, spot and sun lamps are not shot through fog yet: light a scene with media "
                             "by area lamps or emitting meshes")
+        self.world, world_warnings = world.export_world(scene)
+        self.warnings += world_warnings
         if not self.exported.lights and not self.exported.emission.any() and not any(
-                m.grid["emission"].any() for m in self.media.media):
+                m.grid["emission"].any() for m in self.media.media) and self.world is None:
             # Said before any form factor is computed: the result could only be black.
-            raise BakeError("Nothing lights the scene: no lamp, emitting material or emitting medium is visible in "
-                            "renders (the World's light is not baked)")
+            raise BakeError("Nothing lights the scene: no lamp, emitting material, emitting medium or World light "
+                            "is visible in renders")
         announce("choosing settings for %d faces" % self.exported.polygon_count)
         try:
             self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
+        if self.world is not None and not self.world_baked():
+            if self.lit_by() == "nothing":
+                raise BakeError("Only the World lights the scene, and its light is not baked with media (fog, "
+                                "smoke) yet: add a lamp or an emitting mesh")
+            self.warnings.append("The World's light is not baked with media (fog, smoke) yet: the result has no "
+                                 "sky light; bake the surfaces without the Volume objects to see it")
 
     @property
     def method(self):
@@ -140,13 +148,16 @@ class BakeJob:
                 e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
                 element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
                 max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-                lights=e.lights, max_bytes=c.budget_bytes, progress=progress, front_only=e.front_only)
+                lights=e.lights, max_bytes=c.budget_bytes, progress=progress, front_only=e.front_only,
+                world=self.world.radiance if self.world is not None else None)
         bake = functools.partial(native.core().bake, **c.stability_keywords())
         if self.media.media:  # the zonal bake: surfaces and media in one system
             over_relaxation = ({"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION}
                                if method == "gauss_seidel" else {})
             bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media],
                                      **over_relaxation)
+        else:
+            bake = functools.partial(bake, world=self.world.radiance if self.world is not None else None)
         return bake(
             e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
             element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
@@ -186,13 +197,38 @@ class BakeJob:
             "zones": r.get("zones", 0), "zones_before_merge": r.get("zones_before_merge", 0),
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
+            "world": self.world_summary(), "lit_by": self.lit_by(),
             "warnings": list(self.warnings),
             # Every phase, so that their sum is the whole bake's time.
-            "seconds": {"export": self.seconds_export, **r["seconds"], "writeback": seconds_writeback},
+            "seconds": {"export": self.seconds_export, "world_map": self.world.seconds if self.world else 0.0,
+                        **r["seconds"], "writeback": seconds_writeback},
         }
         scene.radiosity.last_report = report_line(summary)
         scene.radiosity.last_accuracy = accuracy_line(summary)
         return summary
+
+    def world_baked(self):
+        return self.world is not None and not self.media.media
+
+    def world_summary(self):
+        """The World's light as baked: its name, whether Cycles rendered it, its map size; None if none."""
+        if not self.world_baked():
+            return None
+        height, width = self.world.radiance.shape[:2]
+        return {"name": self.world.name, "rendered": self.world.rendered, "width": width, "height": height,
+                "description": self.world.describe()}
+
+    def lit_by(self):
+        """What lights the bake, in words: lamps, emitting surfaces and media, the World."""
+        e = self.exported
+        sources = []
+        if e.lights or e.emission.any() or any(m.grid["emission"].any() for m in self.media.media):
+            sources.append("lamps and emitters")
+        if self.world_baked():
+            sources.append("the World")
+        if sources == ["the World"]:
+            return "the World only"
+        return " and ".join(sources) or "nothing"
 
     def polygon_name(self, polygon):
         """'<object> face <n>' for an exported polygon index ('a lamp' for lamp polygons, 'no one face' for -1)."""
@@ -226,8 +262,9 @@ def report_line(summary):
         zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
             hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
     gather = ", final gather (%d rays a corner)" % summary["gather_rays"] if summary.get("gather_rays") else ""
-    return "%d elements%s, %s%s, %d iterations, residual %.2g (%s), %.1f s" % (
-        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, summary["iterations"],
+    lit = ", lit by %s" % summary["lit_by"] if summary.get("world") else ""
+    return "%d elements%s, %s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
+        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, summary["iterations"],
         summary["residual"], state, seconds)
 
 
@@ -293,14 +330,16 @@ def progress_text(info, tolerance):
         share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
-             "gather": "final gather", "gather seams": "final gather at seams"}.get(info["phase"], info["phase"])
+             "gather": "final gather", "gather seams": "final gather at seams",
+             "world": "world light"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 
 def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
-    resolution_reason, near_field, tolerance, matrix memory),
+    resolution_reason, near_field, tolerance, matrix memory), the World's light baked (world: name,
+    rendered, width, height, description; None when none) and what lights the bake (lit_by),
     energy (watts emitted, absorbed, lost), error_estimate (solve bound, measured discretisation
     error), warnings, and seconds per phase (export, form_factors, solve, writeback).
 

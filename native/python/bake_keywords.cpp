@@ -63,6 +63,7 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
     py::dict seconds;
     seconds["elements"] = result.seconds_elements;
     seconds["lights"] = result.seconds_lights;
+    seconds["world"] = result.seconds_world;
     seconds["form_factors"] = result.seconds_form_factors;
     seconds["solve"] = result.seconds_solve;
     seconds["interpolate"] = result.seconds_interpolate;

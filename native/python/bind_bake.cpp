@@ -22,7 +22,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      std::size_t matrix_budget_bytes,
                      const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
                      std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
-                     int gather_shadow_rays, float direct_emitter_area, const std::optional<Array<uint8_t>>& front_only) {
+                     int gather_shadow_rays, float direct_emitter_area, const py::object& world, int world_samples,
+                     int world_point_samples, const std::optional<Array<uint8_t>>& front_only) {
     const SceneInput input =
         scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
@@ -40,6 +41,7 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     settings.final_gather.shadow_rays = gather_shadow_rays;
     if (!(direct_emitter_area >= 0.0f)) throw InputError("direct_emitter_area must be >= 0");
     settings.direct_emitter_area = direct_emitter_area;
+    settings.world = parse_world(world, world_samples, world_point_samples);
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
@@ -116,7 +118,9 @@ void bind_bake(py::module_& m) {
           "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1,
           "final_gather"_a = false, "gather_rays"_a = FinalGatherSettings().rays,
           "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays,
-          "direct_emitter_area"_a = BakeSettings().direct_emitter_area, "front_only"_a = py::none());
+          "direct_emitter_area"_a = BakeSettings().direct_emitter_area, "world"_a = py::none(),
+          "world_samples"_a = WorldLight().samples, "world_point_samples"_a = WorldLight().point_samples,
+          "front_only"_a = py::none());
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,

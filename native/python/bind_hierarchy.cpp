@@ -35,7 +35,9 @@ py::dict bake_hierarchical_arrays(const Array<float>& positions, const Array<int
                                   const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                                   float element_size, double refine_tolerance, double tolerance, int max_iterations,
                                   float hard_edge_angle, const py::list& lights, std::size_t max_elements,
-                                  std::size_t max_bytes, const py::object& progress, const std::optional<Array<uint8_t>>& front_only) {
+                                  std::size_t max_bytes, const py::object& progress, const py::object& world,
+                                  int world_samples, int world_point_samples,
+                                  const std::optional<Array<uint8_t>>& front_only) {
     const SceneInput input =
         scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     HierarchySettings settings;
@@ -47,6 +49,7 @@ py::dict bake_hierarchical_arrays(const Array<float>& positions, const Array<int
     settings.lights = parse_lights(lights);
     settings.limits.max_elements = max_elements;
     settings.max_bytes = max_bytes;
+    settings.world = parse_world(world, world_samples, world_point_samples);
     ProgressReporter reporter(progress);
     HierarchyResult result;
     try {
@@ -93,7 +96,8 @@ void bind_hierarchy(py::module_& m) {
           "refine_tolerance"_a = HierarchySettings().refine_tolerance, "tolerance"_a = 1e-4,
           "max_iterations"_a = 1000, "hard_edge_angle"_a = 0.5235988f, "lights"_a = py::list(),
           "max_elements"_a = ElementLimits().max_elements, "max_bytes"_a = 0, "progress"_a = py::none(),
-          "front_only"_a = py::none());
+          "world"_a = py::none(), "world_samples"_a = WorldLight().samples,
+          "world_point_samples"_a = WorldLight().point_samples, "front_only"_a = py::none());
 }
 
 }  // namespace radiosity::python

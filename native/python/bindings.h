@@ -3,6 +3,7 @@
 #pragma once
 
 #include "radiosity/lights.h"
+#include "radiosity/world.h"
 
 #include <pybind11/pybind11.h>
 
@@ -17,5 +18,9 @@ void bind_zonal(py::module_& m);
 
 /// Lamps given as a list of dicts ({"type": "POINT" | "SPOT" | "SUN", ...}) to core lights.
 Lights parse_lights(const py::list& lamps);
+
+/// The world's light from None (no world) or a float (height, width, 3) equirectangular map,
+/// bottom row first (world.h); ValueError for another shape, a negative or non-finite value.
+WorldLight parse_world(const py::object& map, int samples, int point_samples);
 
 }  // namespace radiosity::python

@@ -33,7 +33,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
-    // The polygons' own emission, before the lamps' first reflection joins it (the final gather
+    // The polygons' own emission, before the lamps' and the world's first reflection join it (the final gather
     // counts emission as direct light and everything else the solve found as indirect).
     const std::vector<Rgb> emitted = elements.emission;
     start = Clock::now();
@@ -42,6 +42,12 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
     }
     result.seconds_lights = seconds_since(start);
+    start = Clock::now();
+    if (!settings.world.empty()) {
+        const std::vector<Rgb> E = world_irradiance(elements, settings.world, progress);
+        for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
+    }
+    result.seconds_world = seconds_since(start);
 
     // Small emitters light every element directly; the solve carries only the light reflected
     // after that, so their own emission leaves it until the solve is done.
@@ -97,7 +103,8 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     if (settings.final_gather.enabled) {
         start = Clock::now();
         const detail::GatherCounts counts =
-            detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.final_gather,
+            detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.world,
+                                 settings.final_gather,
                                  input.material, settings.hard_edge_angle, result.colors, progress);
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;

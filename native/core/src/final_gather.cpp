@@ -9,6 +9,7 @@
 #include "shadow_ray.h"
 #include "stratified.h"
 #include "weld.h"
+#include "world_light.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -51,10 +52,11 @@ std::vector<int32_t> twins(const Elements& elements) {
 class Gatherer {
 public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-             const std::vector<Rgb>& corner_field, const Lights& lights, const FinalGatherSettings& settings,
-             const std::vector<Emitter>& emitters, const hr::Visibility& visibility, float scene_size)
+             const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
+             const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
+             const hr::Visibility& visibility, float scene_size)
         : elements_(elements), emitted_(emitted), radiance_(radiance), corner_field_(corner_field), lights_(lights),
-          emitters_(emitters),
+          world_(world), emitters_(emitters),
           visibility_(visibility), scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -184,6 +186,7 @@ private:
             light += source.radiance * (s.factor * share_seen);
         }
         if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
         return light;
     }
 
@@ -209,6 +212,7 @@ private:
     const std::vector<Rgb>& radiance_;
     const std::vector<Rgb>& corner_field_;
     const Lights& lights_;
+    const WorldSampler& world_;
     const std::vector<Emitter>& emitters_;
     const hr::Visibility& visibility_;
     float scene_size_;
@@ -239,7 +243,7 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 }  // namespace
 
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
-                          const std::vector<Rgb>& radiance, const Lights& lights,
+                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
                           const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
                           CornerColors& colors, const ProgressFn& progress) {
     GatherCounts counts;
@@ -274,6 +278,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         for (int k = 0; k < source.count; ++k) source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
         emitters.push_back(source);
     }
+    const WorldSampler world_sampler(world);
     // Polygon centres (area-weighted element centres) for points buried at their element.
     std::vector<glm::dvec3> polygon_sum;
     std::vector<double> polygon_area;
@@ -306,7 +311,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
     const int passes = 3;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
-        const Gatherer gatherer(elements, emitted, radiance, field, lights, settings, emitters, visibility, scene_size);
+        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, visibility,
+                                scene_size);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);

@@ -8,7 +8,8 @@
 ///  - direct(x) = sum over emitting elements j of L_e,j F_xj V_xj, with F_xj the exact unoccluded
 ///    point-to-polygon factor (Lambert's contour integral, near_field.h) and V_xj the share of j
 ///    that stratified shadow rays find unhidden (each weighted by cos cos / r^2), plus the lamps'
-///    irradiance at x / pi (one shadow ray per lamp, lamp_points.h);
+///    irradiance at x / pi (one shadow ray per lamp, lamp_points.h), plus the world's irradiance
+///    at x / pi (world_light.h);
 ///  - indirect(x) = the mean, over stratified cosine-weighted rays, of the solved radiance where
 ///    the ray first hits an element, less that element's own emission (emission is direct's;
 ///    lamps' first reflection, which the solve folds into the elements' emission, is indirect
@@ -51,11 +52,12 @@ struct GatherCounts {
 
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
 /// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
-/// each element's own emission (without the lamps' first reflection), `radiance` the solved one
-/// (read flat on emitters' back sides, which have no corner colours). Progress phases "gather",
-/// one unit per gathered vertex, then "gather seams" for each later pass; throws Cancelled.
+/// each element's own emission (without the lamps' and the world's first reflection), `radiance`
+/// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
+/// world's light, direct at each point like the lamps'. Progress phases "gather", one unit per
+/// gathered vertex, then "gather seams" for each later pass; throws Cancelled.
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
-                          const std::vector<Rgb>& radiance, const Lights& lights,
+                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
                           const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
                           CornerColors& colors, const ProgressFn& progress);
 

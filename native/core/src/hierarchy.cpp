@@ -9,6 +9,7 @@
 #include "hr_output.h"
 #include "hr_solve.h"
 #include "report_progress.h"
+#include "world_light.h"
 
 #include <tbb/parallel_for.h>
 
@@ -73,6 +74,17 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };
     auto start = Clock::now();
     result.build = build_elements(input, 0.0f, settings.limits);
+    // The world's first reflection per patch (its mean over the patch) is emitted light to the
+    // solve, as bake() counts it; the output shows it as it is at each corner instead.
+    std::vector<Rgb> world_light;
+    if (!settings.world.empty()) {
+        Elements& e = result.build.elements;
+        world_light = world_irradiance(e, settings.world, progress);
+        for (std::size_t p = 0; p < e.size(); ++p) {
+            world_light[p] = e.reflectance[p] * world_light[p] / M_PI;
+            e.emission[p] += world_light[p];
+        }
+    }
     const Elements& patches = result.build.elements;
     stage(1);
     hr::Tree tree(result.build, settings.lights, settings.min_element_size, settings.limits.max_elements);
@@ -132,6 +144,15 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
     std::vector<Rgb> rest(result.output.size());
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    if (!world_light.empty()) {
+        const std::vector<Rgb> world_at_corners = detail::world_light_at_corners(
+            result.output, settings.world, visibility, tree.scene_size, progress);
+        for (std::size_t k = 0; k < corner_light.size(); ++k) corner_light[k] += world_at_corners[k];
+        for (std::size_t e = 0; e < rest.size(); ++e) {
+            const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
+            if (patch >= 0) rest[e] -= world_light[std::size_t(patch)];
+        }
+    }
     hr::gather_at_corners(tree, visibility, result.output, mesh.leaf, rest, corner_light, progress);
     // The rest of the links, before the corner colours' welding and sets.
     free_links(tree, [](std::size_t) { return true; });

@@ -114,7 +114,8 @@ class OutputShapesTest(unittest.TestCase):
         self.assertEqual(result["element_polygon"].shape, (elements,))
         self.assertAlmostEqual(float(fronts(result, "element_area").sum()), 6.0, places=5)
         self.assertEqual(set(result["seconds"]),
-                         {"elements", "lights", "small_emitters", "form_factors", "solve", "interpolate", "gather"})
+                         {"elements", "lights", "world", "small_emitters", "form_factors", "solve", "interpolate",
+                          "gather"})
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()
@@ -232,6 +233,18 @@ class LightsTest(unittest.TestCase):
         solid_angle = 4.0 * math.atan(1.0 / math.sqrt(3.0))
         power = float((result["element_radiance"][:, 0] * result["element_area"]).sum()) * math.pi / rho
         self.assertAlmostEqual(power, intensity * solid_angle, delta=1e-3 * power)
+
+    def test_uniform_world_on_a_lone_floor_gives_rho_w(self):
+        rho, sky = 0.5, np.array([0.3, 0.6, 1.2], dtype=np.float32)
+        for bake in (_core.bake, _core.bake_hierarchical):
+            result = bake(*self.floor(rho), element_size=0.25, world=sky.reshape(1, 1, 3))
+            np.testing.assert_allclose(result["corner_radiance"], np.tile(rho * sky, (4, 1)), rtol=1e-6)
+
+    def test_bad_world_map_is_a_value_error(self):
+        with self.assertRaisesRegex(ValueError, "world must be an equirectangular map"):
+            _core.bake(*self.floor(), world=np.ones((4, 8), dtype=np.float32))
+        with self.assertRaisesRegex(ValueError, "finite and >= 0"):
+            _core.bake(*self.floor(), world=np.full((4, 8, 3), -1.0, dtype=np.float32))
 
     def test_bad_lamp_is_named(self):
         with self.assertRaisesRegex(ValueError, "light 0: type"):

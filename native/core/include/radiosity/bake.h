@@ -14,6 +14,7 @@
 #include "radiosity/interpolation.h"
 #include "radiosity/lights.h"
 #include "radiosity/solver.h"
+#include "radiosity/world.h"
 
 namespace radiosity {
 
@@ -21,7 +22,8 @@ namespace radiosity {
 /// at the corner itself, L(x) = L_e(x) + rho(x) [direct(x) + indirect(x)], instead of
 /// interpolated from the elements around it (see final_gather.h).
 ///  - direct: every emitting element's exact unoccluded point-to-polygon factor times the share
-///    of it that stratified shadow rays find unhidden, plus the point, spot and sun lamps at x;
+///    of it that stratified shadow rays find unhidden, plus the point, spot and sun lamps at x,
+///    plus the world's light at x (world.h);
 ///  - indirect: stratified cosine-weighted rays into the solved element radiances, each hit
 ///    counting its radiance less its own emission (which direct has counted).
 /// Deterministic: the same bake twice gives bit-identical colours.
@@ -48,6 +50,9 @@ struct BakeSettings {
     /// Point, spot and sun lamps, shot once before the solve: each element's reflected direct
     /// light rho E / pi joins its emitted radiance.
     Lights lights;
+    /// The world's light (an environment map; none by default), received like the lamps': each
+    /// element's rho E / pi joins its emitted radiance, and the final gather adds it at each point.
+    WorldLight world;
     /// The final gather at the output corners (off by default).
     FinalGatherSettings final_gather;
     /// Emitting elements smaller than this (square metres; 0 = none) light every element directly,
@@ -65,6 +70,7 @@ struct BakeResult {
     std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
     std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
     double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
+    double seconds_world = 0;           ///< the world's light on the elements (0 without a world)
     double seconds_gather = 0;          ///< the final gather (0 when off)
     std::size_t gathered_points = 0;    ///< output vertices whose colour the final gather computed
     std::size_t buried_points = 0;      ///< output vertices inside other geometry: interpolated colour kept

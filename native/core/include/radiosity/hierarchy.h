@@ -41,6 +41,7 @@
 #include "radiosity/interpolation.h"
 #include "radiosity/lights.h"
 #include "radiosity/scene.h"
+#include "radiosity/world.h"
 
 #include <cstddef>
 #include <vector>
@@ -62,6 +63,10 @@ struct HierarchySettings {
     /// twice that): pairs stop splitting once it is reached. 0: no cap.
     std::size_t max_bytes = 0;
     Lights lights;                   ///< point and spot lamps and suns: sources of links
+    /// The world's light (none by default): its first reflection, the mean over each patch, joins
+    /// the patch's emission for the solve; the output's corners show it as it is at each corner
+    /// (WorldLight::point_samples rays per corner), with the patch's mean taken out of the rest.
+    WorldLight world;
     /// Leaves may split this many levels below `min_element_size` after the solve where the
     /// lamps' light needs it (along their shadows' edges): the finest are min_element_size / 2^this.
     int lamp_detail_levels = 2;
