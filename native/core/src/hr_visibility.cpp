@@ -40,10 +40,22 @@ struct Embree {
     decltype(&::rtcIntersect1) intersect1;
 };
 
+/// The folder of the binary this code is linked into (the Python module), with a trailing '/'.
+std::string own_folder() {
+    Dl_info info{};
+    if (!dladdr(reinterpret_cast<void*>(&own_folder), &info) || !info.dli_fname) return {};
+    const std::string path = info.dli_fname;
+    const auto slash = path.rfind('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
 Embree load_embree() {
     void* library = nullptr;
     std::string errors;
-    for (const char* name : {RADIOSITY_EMBREE_SONAME, RADIOSITY_EMBREE_PATH}) {
+    // A package ships its own Embree beside the module (tools/packaging); opened by path, it is
+    // that copy even when the host already loaded a library of the same soname.
+    const std::string bundled = own_folder() + RADIOSITY_EMBREE_SONAME;
+    for (const char* name : {bundled.c_str(), RADIOSITY_EMBREE_SONAME, RADIOSITY_EMBREE_PATH}) {
         if ((library = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;  // never closed
         errors += std::string(errors.empty() ? "" : "; ") + dlerror();
     }
