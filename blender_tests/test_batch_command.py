@@ -56,7 +56,7 @@ def test_bakes_and_saves():
     output = os.path.join(args.work, "furnace-baked.blend")
     result = run(harness.batch_command(source, "--output", output, *FURNACE_OPTIONS))
     assert result.returncode == 0, result.stderr
-    assert "Bake Radiosity: saved %s" % output in result.stdout, result.stdout
+    assert "Bake Radiosity: saved %s" % os.path.abspath(output) in result.stdout, result.stdout
     assert_furnace_baked(output)
 
 

@@ -1,12 +1,13 @@
 """Zips a folder made by collect_libs.py and privatize_libs.py into a wheel Blender's extension
 system installs (PEP 427):
 
-    python3 make_wheel.py OUT_DIR VERSION WHEEL_DIR
+    python3 make_wheel.py OUT_DIR VERSION WHEEL_DIR [PLATFORM_TAG]
 
-The wheel holds one package, bake_radiosity_core: an empty __init__.py, the module _core and the
-private libraries beside it. Its tags come from the module's file name
-(_core.cpython-313-x86_64-linux-gnu.so: cp313-cp313-linux_x86_64). Linux wheels built on a
-Debian release are tagged linux_x86_64, not manylinux: they need that release's glibc or newer.
+The wheel holds one package, bake_radiosity_core: its __init__.py (native/python), the module
+_core and the private libraries beside it. Its Python tags come from the module's file name
+(_core.cpython-313-x86_64-linux-gnu.so: cp313-cp313). The platform tag is linux_x86_64 unless
+given: a wheel built on a Debian release needs that release's glibc or newer, which is not a
+manylinux promise (the release workflow, built in a manylinux_2_28 image, gives that tag).
 Prints the wheel's path.
 """
 
@@ -21,12 +22,15 @@ import zipfile
 DISTRIBUTION = "bake_radiosity_core"
 
 
-def tags(module):
+INIT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "native", "python",
+                    "bake_radiosity_core", "__init__.py")
+
+
+def python_tag(module):
     match = re.fullmatch(r"_core\.cpython-(\d+)-x86_64-linux-gnu\.so", module)
     if not match:
         raise SystemExit("cannot tell the Python of %s" % module)
-    python = "cp" + match.group(1)
-    return python, python, "linux_x86_64"
+    return "cp" + match.group(1)
 
 
 def record_line(name, data):
@@ -34,13 +38,14 @@ def record_line(name, data):
     return "%s,sha256=%s,%d" % (name, digest, len(data))
 
 
-def main(out_dir, version, wheel_dir):
+def main(out_dir, version, wheel_dir, platform="linux_x86_64"):
     with open(os.path.join(out_dir, "bundle.json")) as stream:
         bundle = json.load(stream)
-    python, abi, platform = tags(bundle["module"])
+    python = abi = python_tag(bundle["module"])
     folder = os.path.join(out_dir, bundle["package"])
     info = "%s-%s.dist-info" % (DISTRIBUTION, version)
-    files = {bundle["package"] + "/__init__.py": b'"""Bake Radiosity\'s native core, for the add-on."""\n'}
+    with open(INIT, "rb") as stream:
+        files = {bundle["package"] + "/__init__.py": stream.read()}
     for name in sorted(os.listdir(folder)):
         with open(os.path.join(folder, name), "rb") as stream:
             files[bundle["package"] + "/" + name] = stream.read()
@@ -63,6 +68,6 @@ def main(out_dir, version, wheel_dir):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         raise SystemExit(__doc__)
     main(*sys.argv[1:])
