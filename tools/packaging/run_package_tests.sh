@@ -13,7 +13,10 @@ set -uo pipefail
 [ $# -ge 3 ] || { sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 blender=$1 package=$2 work=$(realpath -m "$3"); shift 3
 root=$(cd "$(dirname "$0")/../.." && pwd)
-tests=("$@"); [ ${#tests[@]} -gt 0 ] || tests=($(cd "$root/blender_tests" && ls test_*.py))
+tests=("$@")
+if [ ${#tests[@]} -eq 0 ]; then
+  for test in "$root"/blender_tests/test_*.py; do tests+=("$(basename "$test")"); done
+fi
 failed=()
 for test in "${tests[@]}"; do
   home=$work/${test%.py}
