@@ -29,13 +29,38 @@ def arguments():
 
 
 def install_addon(zip_path):
-    """Installs the zip into this test's own user scripts folder and enables it."""
-    result = bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
-    assert result == {"FINISHED"}, "addon_install failed: %s" % result
-    result = bpy.ops.preferences.addon_enable(module=MODULE)
-    assert result == {"FINISHED"}, "addon_enable failed: %s" % result
+    """Installs the zip into this test's own user folders and enables it: an extension package
+    (tools/build_packages.sh; its manifest at the top) as an extension in the user_default
+    repository, which makes the module bl_ext.user_default.bake_radiosity (harness.MODULE says
+    which), the add-on zip as a legacy add-on. The preferences are saved, so that the batch
+    command (batch_command) finds the add-on enabled."""
+    global MODULE
+    import zipfile
+    with zipfile.ZipFile(zip_path) as package:
+        extension = "blender_manifest.toml" in package.namelist()
+    if extension:
+        MODULE = "bl_ext.user_default.bake_radiosity"
+        result = bpy.ops.extensions.package_install_files(
+            repo="user_default", filepath=os.path.abspath(zip_path), enable_on_install=True)
+        assert result == {"FINISHED"}, "package_install_files failed: %s" % result
+    else:
+        result = bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
+        assert result == {"FINISHED"}, "addon_install failed: %s" % result
+        result = bpy.ops.preferences.addon_enable(module=MODULE)
+        assert result == {"FINISHED"}, "addon_enable failed: %s" % result
     assert addon_utils.check(MODULE)[1], "add-on not loaded after enabling"
+    bpy.ops.wm.save_userpref()
     return sys.modules[MODULE]
+
+
+def batch_command(blend_file, *options):
+    """The command line of a headless bake of `blend_file` with the batch command's `options`, as
+    an artist types it in this Blender: `--command bake_radiosity` from 4.2 on, the
+    `--python-expr` form (which imports the add-on by its legacy name) before."""
+    if bpy.app.version >= (4, 2, 0):
+        return [bpy.app.binary_path, "-b", blend_file, "--command", "bake_radiosity", *options]
+    return [bpy.app.binary_path, "-b", "--factory-startup", blend_file, "--python-exit-code", "1",
+            "--python-expr", "import bake_radiosity.cli as c; c.main()", "--", *options]
 
 
 def use_unbiased_cycles(samples, seed, bounces=128, volume_bounces=0, transparent_bounces=0):

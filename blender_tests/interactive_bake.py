@@ -8,6 +8,7 @@ undo removes it.
 Windowed Blender runs this script before its event loop, so the steps run from a timer; the
 process ends with exit code 0 when every step passed, 1 otherwise."""
 
+import importlib
 import os
 import subprocess
 import sys
@@ -57,7 +58,7 @@ def invoke_bake():
 def steps():
     """A generator of test steps; each yield waits for the next timer tick."""
     harness.install_addon(args.addon_zip)
-    from bake_radiosity import operators
+    operators = importlib.import_module(harness.MODULE + ".operators")
     scenes.clear_scene()
     scenes.cornell_box("MESH")
     settings = bpy.context.scene.radiosity

@@ -75,9 +75,7 @@ def test_a_diverging_solve_is_a_report_and_changes_nothing():
 
     source = os.path.join(args.work, "diverging.blend")
     bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
-    run = subprocess.run([bpy.app.binary_path, "-b", source, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--output",
-                          os.path.join(args.work, "diverging-baked.blend")],
+    run = subprocess.run(harness.batch_command(source, "--output", os.path.join(args.work, "diverging-baked.blend")),
                          capture_output=True, text=True, timeout=600)
     print(run.stderr[-800:])
     assert run.returncode == 1, run.returncode

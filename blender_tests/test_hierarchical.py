@@ -189,9 +189,8 @@ def test_batch_command_bakes_hierarchically():
     floor_under_lamp()
     path = os.path.join(args.work, "hierarchical.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
-    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path,
-                          "--method", "HIERARCHICAL", "--element-size", "0.05", "--refine-tolerance", "0.02"],
+    run = subprocess.run(harness.batch_command(path, "--output", path, "--method", "HIERARCHICAL",
+                                               "--element-size", "0.05", "--refine-tolerance", "0.02"),
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert "hierarchical" in run.stdout and "leaves" in run.stdout, run.stdout
@@ -204,10 +203,9 @@ def test_batch_command_keeps_the_hierarchy_within_the_memory_budget():
     scenes.cornell_box("MESH")
     path = os.path.join(args.work, "hierarchical_budget.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
-    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path,
-                          "--method", "HIERARCHICAL", "--element-size", "0.02", "--refine-tolerance", "0.01",
-                          "--memory-budget", "1"],
+    run = subprocess.run(harness.batch_command(path, "--output", path, "--method", "HIERARCHICAL",
+                                               "--element-size", "0.02", "--refine-tolerance", "0.01",
+                                               "--memory-budget", "1"),
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert "Refinement stopped at the Memory Budget (1 MB of elements and links)" in run.stdout, run.stdout

@@ -3,6 +3,7 @@ the export of a mesh medium and of a Volume object against Cycles' Principled Vo
 Kirchhoff's isothermal enclosure, a scattering medium inside black emitting walls, the energy
 balance, and the baked Volume object with its OpenVDB file."""
 
+import importlib
 import math
 import os
 import sys
@@ -17,7 +18,8 @@ import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
-from bake_radiosity import media_export, native  # noqa: E402
+media_export = importlib.import_module(harness.MODULE + ".media_export")
+native = importlib.import_module(harness.MODULE + ".native")
 
 core = native.core()
 ZONE = 0.25

@@ -123,9 +123,8 @@ def test_automatic_method_follows_the_memory_budget():
     # The batch command takes the same budget.
     path = os.path.join(args.work, "budget.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
-    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path,
-                          "--memory-budget", str(fits_mb)], capture_output=True, text=True, timeout=600)
+    run = subprocess.run(harness.batch_command(path, "--output", path, "--memory-budget", str(fits_mb)),
+                         capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert "Gauss-Seidel" in run.stdout and "Power" in run.stdout, run.stdout
 
@@ -316,8 +315,7 @@ def test_small_distant_lamp_is_lit_directly():
     path = os.path.join(args.work, "small_lamp.blend")
     settings.quality = "MEDIUM"
     bpy.ops.wm.save_as_mainfile(filepath=path)
-    run = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", path, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--output", path, "--quality", "DRAFT"],
+    run = subprocess.run(harness.batch_command(path, "--output", path, "--quality", "DRAFT"),
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     assert reason in run.stdout, run.stdout

@@ -133,8 +133,7 @@ def test_command_line():
     if os.path.exists(baked):
         os.remove(baked)
     bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
-    command = [bpy.app.binary_path, "-b", source, "--python-expr", "import bake_radiosity.cli as c; c.main()",
-               "--", "--output", baked, "--resolution", "64", "--element-size", "0.25"]
+    command = harness.batch_command(source, "--output", baked, "--resolution", "64", "--element-size", "0.25")
     run = subprocess.run(command, capture_output=True, text=True, timeout=600)
     print(run.stdout[-1500:], run.stderr[-1500:])
     assert run.returncode == 0, run.returncode

@@ -14,7 +14,7 @@ bl_info = {
 
 import importlib  # noqa: E402  (bl_info first: Blender reads it without running the module)
 
-MODULE_NAMES = ("properties", "operators", "ui")
+MODULE_NAMES = ("properties", "operators", "ui", "cli")
 _modules = [importlib.import_module("." + name, __package__) for name in MODULE_NAMES]
 
 # Reloading the add-on (F3 > Reload Scripts) must pick up edited modules.

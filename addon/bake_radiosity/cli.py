@@ -1,12 +1,18 @@
-"""Headless baking from the command line.
+"""Headless baking from the command line. Blender 4.2 and later (the add-on installed and enabled,
+as an extension or not):
 
-    blender -b scene.blend --python-expr "import bake_radiosity.cli as c; c.main()" -- \\
+    blender -b scene.blend --command bake_radiosity --output baked.blend [--quality HIGH] ...
+
+Blender 3.x (the add-on installed from the zip; enabling it is not needed):
+
+    blender -b scene.blend --python-exit-code 1 --python-expr "import bake_radiosity.cli as c; c.main()" -- \\
         --output baked.blend [--quality HIGH] [--resolution 256] [--element-size 0.05] ...
 
 or, with the path of this file:  blender -b scene.blend --python .../bake_radiosity/cli.py -- ...
 
 Bakes the file's active scene, saves it to --output (default: over the input file) and exits
-0; on any failure prints "Bake Radiosity failed: <reason>" and exits 1.
+0; on any failure prints "Bake Radiosity failed: <reason>" to stderr and exits 1 (2 for
+arguments it cannot parse, with the usage).
 """
 
 import argparse
@@ -15,7 +21,7 @@ import sys
 
 
 def parse(argv):
-    parser = argparse.ArgumentParser(prog="blender -b scene.blend --python-expr '...' --",
+    parser = argparse.ArgumentParser(prog="blender -b scene.blend --command bake_radiosity",
                                      description="Bake radiosity into colour attributes and save.")
     parser.add_argument("--output", help="where to save the baked file (default: overwrite the input)")
     parser.add_argument("--scene", help="scene to bake (default: the file's active scene)")
@@ -46,15 +52,47 @@ def overrides_of(arguments):
     return overrides
 
 
-def main(argv=None):
-    if argv is None:
-        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    arguments = parse(argv)
+def run(argv):
+    """Bakes and saves as `argv` says; returns the exit code: 0, 1 after a failure (the reason on
+    stderr), 2 for arguments argparse rejected (its usage on stderr). The `--command` entry."""
+    try:
+        arguments = parse(argv)
+    except SystemExit as stop:  # --help (0) or arguments it rejected (2)
+        return stop.code or 0
     try:
         _bake_and_save(arguments)
     except Exception as error:
         print("Bake Radiosity failed: %s" % error, file=sys.stderr, flush=True)
-        sys.exit(1)
+        return 1
+    return 0
+
+
+def main(argv=None):
+    """The `--python-expr` entry: the arguments after `--`; exits the process on failure."""
+    if argv is None:
+        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    code = run(argv)
+    if code:
+        sys.exit(code)
+
+
+_command = None
+
+
+def register():
+    """`blender --command bake_radiosity ...` (Blender 4.2 and later)."""
+    global _command
+    import bpy
+    if hasattr(bpy.utils, "register_cli_command"):
+        _command = bpy.utils.register_cli_command("bake_radiosity", run)
+
+
+def unregister():
+    global _command
+    import bpy
+    if _command is not None:
+        bpy.utils.unregister_cli_command(_command)
+        _command = None
 
 
 def _bake_and_save(arguments):

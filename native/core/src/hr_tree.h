@@ -118,8 +118,12 @@ struct Node {
 /// needs them: a receiver's sources lie anywhere among the nodes, so each read of one waits for
 /// memory unless it was asked for a few links ahead.
 inline void prefetch_source(const Node& n) {
+#if defined(__GNUC__) || defined(__clang__)
     __builtin_prefetch(&n.kind);
     __builtin_prefetch(&n.radiance);
+#else
+    (void)n;
+#endif
 }
 
 /// Links read ahead of the one being summed (prefetch_source).

@@ -1,15 +1,16 @@
 /// @file hr_visibility.cpp
 /// @brief The patches as one Embree quad geometry (triangles as quads with a repeated corner).
 ///
-/// Embree is opened with dlopen(RTLD_LOCAL) and called through the addresses dlsym gives, never
-/// linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc* calls
+/// Embree is opened privately (shared_library.h: dlopen with RTLD_LOCAL) and called through the
+/// addresses dlsym gives, never linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc* calls
 /// would bind to the Embree loaded first, whatever version it is (an Embree 3 call on Embree 4
 /// misses every ray: hierarchical bakes lose their shadows without an error). dlsym on our own
 /// handle returns our Embree's functions; Embree exports nothing but its rtc* API and does not
 /// call it itself, so nothing inside it binds to the other Embree either.
 #include "hr_visibility.h"
 
-#include <dlfcn.h>
+#include "shared_library.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -43,13 +44,15 @@ struct Embree {
 Embree load_embree() {
     void* library = nullptr;
     std::string errors;
-    for (const char* name : {RADIOSITY_EMBREE_SONAME, RADIOSITY_EMBREE_PATH}) {
-        if ((library = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;  // never closed
-        errors += std::string(errors.empty() ? "" : "; ") + dlerror();
+    // A package ships its own Embree beside the module (tools/packaging); opened by path, it is
+    // that copy even when the host already loaded a library of the same soname.
+    for (const std::string& name : {shared_library::own_folder() + RADIOSITY_EMBREE_SONAME,
+                                     std::string(RADIOSITY_EMBREE_SONAME), std::string(RADIOSITY_EMBREE_PATH)}) {
+        if ((library = shared_library::open(name, errors))) break;
     }
     if (!library) throw std::runtime_error("Embree: cannot load " RADIOSITY_EMBREE_SONAME ": " + errors);
     auto get = [library](auto& function, const char* name) {
-        void* address = dlsym(library, name);
+        void* address = shared_library::find(library, name);
         if (!address) throw std::runtime_error(std::string("Embree: ") + RADIOSITY_EMBREE_SONAME + " has no " + name);
         function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(address);
     };
