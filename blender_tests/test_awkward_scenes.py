@@ -223,9 +223,8 @@ def test_the_batch_command_reports_every_phase():
     room_with_panel()
     source = os.path.join(args.work, "room.blend")
     bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
-    run = subprocess.run([bpy.app.binary_path, "-b", source, "--python-expr",
-                          "import bake_radiosity.cli as c; c.main()", "--", "--quality", "DRAFT",
-                          "--output", os.path.join(args.work, "room-baked.blend")],
+    run = subprocess.run(harness.batch_command(source, "--quality", "DRAFT",
+                                               "--output", os.path.join(args.work, "room-baked.blend")),
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr[-800:]
     lines = [line for line in run.stdout.splitlines() if line.startswith("Bake Radiosity: ")]
