@@ -64,14 +64,15 @@ def test_presets_map_to_settings():
               % (quality, choice.element_size, size, choice.resolution, choice.resolution_reason, choice.tolerance,
                  choice.elements, choice.method))
         assert abs(choice.element_size - fraction * size) < 1e-6 * size, choice
-        # The walls' faces (1/8 m) split into whole elements, the smallest tenth of the elements among
+        # The walls' faces (1/8 m) split into whole elements, the smallest holding a tenth of the area among
         # them; seen from half the 1 m cube's diagonal.
         face = 1 / scenes.CORNELL_CELLS
         wall_element = face / math.ceil(face / choice.element_size)
         resolution = max(32, even_resolution(0.5 * math.sqrt(3), wall_element ** 2, cells))  # the core's least
         assert (choice.resolution, choice.hemicube_rotations, choice.tolerance, choice.method) == (
             resolution, 1, tolerance, "gauss_seidel"), (choice, resolution)
-        assert "smallest tenth of the elements cover %d cells" % cells in choice.resolution_reason, choice
+        reason = "smallest elements holding a tenth of their area cover %d cells" % cells
+        assert reason in choice.resolution_reason, choice
         # About 6 / fraction^2 elements whatever the shape (faces split into whole elements: more).
         assert 6 / fraction ** 2 <= choice.elements <= 1.3 * 6 / fraction ** 2, choice.elements
 
@@ -297,8 +298,8 @@ def test_small_distant_lamp_is_lit_directly():
     assert choice.direct_emitters == 2, choice  # the lamp's two sides
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
     direct = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
-    reason = "Hemi-cube resolution %d: the smallest tenth of the elements cover 4 cells from half the scene's " \
-             "diagonal; 2 emitting elements smaller than" % resolution
+    reason = "Hemi-cube resolution %d: the smallest elements holding a tenth of their area cover 4 cells from " \
+             "half the scene's diagonal; 2 small emitting elements light the scene directly" % resolution
     assert reason in settings.last_accuracy, settings.last_accuracy
     element_size = choice.element_size
 
@@ -380,7 +381,8 @@ def test_near_field_at_medium_and_high():
 
     settings = bpy.context.scene.radiosity
     assert not auto_settings.PRESETS["DRAFT"].near_field
-    settings.quality = "MEDIUM"
+    # The near-field correction is part of the presets' own solutions, written without the gather.
+    settings.quality, settings.final_gather = "MEDIUM", False
     settings.memory_budget = settings.bl_rna.properties["memory_budget"].default  # stored factors fit
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
     assert "Gauss-Seidel" in settings.last_report, settings.last_report

@@ -49,8 +49,8 @@ class Preset:
     gathered: Gathered  # the solution when the final gather writes the output
 
 
-# Cells: the smallest tenth of the elements (and of the emitting elements), seen head-on from half
-# the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
+# Cells: the smallest elements (and emitting elements) holding a tenth of their area, seen head-on
+# from half the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
 # RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236.
 # Near field, measured against Cycles (docs/accuracy.md): a slab 5 mm over a floor, corners under
 # and around it, Medium 7.5% -> 5.6% RMS and High 7.9% -> 7.1% with it, at the same time; the
@@ -71,11 +71,14 @@ PRESETS = {
 # Custom quality's final gather.
 GATHER_RAYS = 1024
 # Emitting elements smaller than the resolution resolves (fewer than the preset's cells from half
-# the scene's diagonal) light every element directly instead of driving the resolution of the
-# whole bake: a 1 cm emitter in a 2 m room asked for 850. Each costs one analytic factor and a few
-# shadow rays per element, so at most this many emitter-element pairs take that path; beyond it
-# the largest of them go back to the hemi-cube.
-DIRECT_EMITTER_PAIRS = 20_000_000
+# the scene's diagonal) light every element directly (analytic factors and shadow rays) instead of
+# driving the resolution of the whole bake (a 1 cm emitter in a 2 m room asked for 850). Larger
+# emitters stay with the hemi-cube: far from them a pair gets one shadow ray, noisier in a penumbra
+# than a hemi-cube that resolves them (a slab 5 mm over a floor under a 0.5 m emitter: 9.1% against
+# 5.6% RMS around it at ungathered Medium with every emitter lit directly). Each pair costs one
+# factor and 1 to 16 shadow rays (about a microsecond), so at most this many emitter-element pairs
+# take that path, the smallest emitters first; the rest set the resolution.
+DIRECT_EMITTER_PAIRS = 5_000_000
 
 
 @dataclass(frozen=True)
@@ -130,7 +133,8 @@ class Resolution:
 
 def direct_emitter_area(layout, emitting, resolution, preset):
     """Emitting elements smaller than what `resolution` resolves (`_core.resolved_area`) light the
-    elements directly: (area bound, how many), the smallest first within DIRECT_EMITTER_PAIRS."""
+    elements directly, the smallest first within DIRECT_EMITTER_PAIRS emitter-element pairs: (area
+    bound, how many)."""
     area = layout["element_area"]
     bound = native.core().resolved_area(layout["element_vertices"], resolution, preset.cells)
     small = np.sort(area[emitting & (area < bound)])
@@ -142,10 +146,10 @@ def direct_emitter_area(layout, emitting, resolution, preset):
 
 
 def preset_resolution(layout, emitting, preset, zonal=False):
-    """The Resolution at which the smallest tenth of the elements, and of the emitting elements (a
-    small lamp aliases most visibly: blotchy light), cover `preset.cells` cells seen from half the
-    scene's diagonal (`_core.recommended_resolution`). Emitting elements smaller than that resolution
-    resolves light the elements directly instead (direct_emitter_area; not in the zonal bake).
+    """The Resolution at which the smallest elements, and emitting elements, holding a tenth of their
+    area (a small lamp aliases most visibly: blotchy light) cover `preset.cells` cells seen from half
+    the scene's diagonal (`_core.recommended_resolution`). Emitting elements that resolution resolves
+    poorly light the elements directly instead (direct_emitter_area; not in the zonal bake).
     Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
     area, vertices = layout["element_area"], layout["element_vertices"]
@@ -157,8 +161,8 @@ def preset_resolution(layout, emitting, preset, zonal=False):
     found = _resolution_for_groups(core, area, vertices, emitting, preset, zonal)
     if not direct[1]:
         return found
-    reason = found.reason + "; %d emitting element%s smaller than %.3g cm\u00b2 light the scene directly" % (
-        direct[1], "" if direct[1] == 1 else "s", direct[0] * 1e4)
+    reason = found.reason + "; %d small emitting element%s light the scene directly" % (
+        direct[1], "" if direct[1] == 1 else "s")
     return Resolution(found.resolution, found.rotations, reason, *direct)
 
 
@@ -167,16 +171,16 @@ def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
     wanted = [(core.recommended_resolution(a, vertices, preset.cells), name, a) for name, a in groups]
     resolution, name, driving = max(wanted, key=lambda w: w[0])
     if resolution < MAX_RESOLUTION:
-        return Resolution(resolution, 1, "the smallest tenth of the %s cover %g cells from half the scene's "
-                                         "diagonal" % (name, preset.cells))
+        return Resolution(resolution, 1, "the smallest %s holding a tenth of their area cover %g cells from half "
+                                         "the scene's diagonal" % (name, preset.cells))
     # N grows as sqrt(cells): a quarter of the cells asks for N / 2. Halve until inside the core's range.
     scale = 2
     while core.recommended_resolution(driving, vertices, preset.cells / scale ** 2) >= MAX_RESOLUTION and scale < 64:
         scale *= 2
     needed = scale * core.recommended_resolution(driving, vertices, preset.cells / scale ** 2)
     rotations = 1 if zonal else min(MAX_ROTATIONS, math.ceil((needed / MAX_RESOLUTION) ** ROTATION_EXPONENT))
-    reason = "the smallest tenth of the %s would need %d to cover %g cells from half the scene's diagonal, " \
-             "capped at %d" % (name, needed, preset.cells, MAX_RESOLUTION)
+    reason = "the smallest %s holding a tenth of their area would need %d to cover %g cells from half the " \
+             "scene's diagonal, capped at %d" % (name, needed, preset.cells, MAX_RESOLUTION)
     if rotations > 1:
         reason += ", %d hemi-cubes turned about the normal" % rotations
     return Resolution(MAX_RESOLUTION, rotations, reason)
