@@ -1,0 +1,53 @@
+"""Issue 20's error measure: relative RMS luminance error per vertex against a deep Cycles truth.
+
+Corner colours are reduced to one luminance per vertex (the mean of the vertex's corners that are
+not on an emitter); vertices the truth sees below DARK_SHARE of the mean vertex are left out, so
+that no vertex in shadow decides the ratio. The truth is the mean of N independent Cycles bakes;
+its own noise is each vertex's spread between seeds / sqrt(N), relative to the vertex, as an RMS
+over the judged vertices, and is taken out of a measured error in quadrature (independent errors
+add as squares). Plain numpy: no Blender needed."""
+
+import math
+
+import numpy as np
+
+# Rec. 709 luminance of linear RGB: Blender's scene-linear colour space.
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+DARK_SHARE = 0.01
+
+
+class VertexLuminance:
+    """Corner colours (corners, 3) -> one luminance per vertex that has a kept corner."""
+
+    def __init__(self, corner_vertex, kept_corners):
+        self.kept = np.asarray(kept_corners, dtype=bool)
+        self.vertices, self.slot = np.unique(np.asarray(corner_vertex)[self.kept], return_inverse=True)
+        self.count = np.bincount(self.slot)
+
+    def __call__(self, corner_rgb):
+        luminance = np.asarray(corner_rgb, dtype=np.float64)[self.kept] @ LUMINANCE
+        return np.bincount(self.slot, weights=luminance) / self.count
+
+
+class Truth:
+    """The mean of per-seed vertex luminances (seeds, vertices) and what it can resolve."""
+
+    def __init__(self, per_seed):
+        self.per_seed = np.asarray(per_seed, dtype=np.float64)
+        self.seeds = len(self.per_seed)
+        self.mean = self.per_seed.mean(axis=0)
+        self.judged = self.mean >= DARK_SHARE * self.mean.mean()
+
+    def noise(self):
+        """Relative RMS noise of the mean over the judged vertices (NaN with fewer than 2 seeds)."""
+        if self.seeds < 2:
+            return math.nan
+        spread = self.per_seed[:, self.judged].std(axis=0, ddof=1) / math.sqrt(self.seeds)
+        return float(np.sqrt(np.mean((spread / self.mean[self.judged]) ** 2)))
+
+    def error(self, vertex_luminance):
+        """(measured, with the truth's noise taken out) relative RMS error of a bake's vertices."""
+        values = np.asarray(vertex_luminance, dtype=np.float64)[self.judged]
+        reference = self.mean[self.judged]
+        measured = float(np.sqrt(np.mean(((values - reference) / reference) ** 2)))
+        return measured, math.sqrt(max(measured ** 2 - self.noise() ** 2, 0.0))
