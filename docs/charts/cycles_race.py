@@ -41,11 +41,12 @@ import deep_cycles  # noqa: E402
 import harness  # noqa: E402
 import scenes  # noqa: E402
 
-CYCLES_SAMPLES = (16, 64, 256, 1024, 4096, 16384)
+CYCLES_SAMPLES = (16, 64, 256, 1024, 4096, 16384, 32768)
 PRESETS = ("DRAFT", "MEDIUM", "HIGH")
 ELEMENT_DIVISIONS = (8, 12, 16, 24, 32, 48)  # at Medium's other settings; 32 is Medium itself
 FIELDS = ("kind", "quality", "final_gather", "divisions", "cells", "gather_rays", "samples", "elements", "resolution",
-          "cpu_seconds", "wall_seconds", "error", "error_noise_out", "cycles_cpu_seconds_same_error",
+          "cpu_seconds", "wall_seconds", "error", "error_noise_out", "error_seams", "error_elsewhere", "error_scaled",
+          "cycles_cpu_seconds_same_error",
           "ratio_cpu", "cycles_wall_seconds_same_error", "ratio_wall", "extrapolated", "load")
 
 
@@ -59,7 +60,8 @@ def arguments():
                                               "build/truth)")
     parser.add_argument("--truth-samples", type=int, default=4096, help="samples of each seed of the truth")
     parser.add_argument("--truth-noise", type=float, default=0.003, help="the truth's target noise")
-    parser.add_argument("--truth-minutes", type=float, default=60.0, help="wall time the truth may add seeds for")
+    parser.add_argument("--truth-minutes", type=float, default=60.0,
+                        help="wall minutes the truth's seeds may take in total (over every run that extends it)")
     parser.add_argument("--cycles-samples", default=",".join(map(str, CYCLES_SAMPLES)))
     parser.add_argument("--configs", default="", help="extra bakes: divisions/cells/rays,...")
     parser.add_argument("--no-elements", dest="elements", action="store_false", help="skip the element chart")
@@ -119,6 +121,17 @@ def time_to_reach(points, level):
     return math.exp(math.log(t1) + math.log(level / e1) / math.log(e1 / e0) * math.log(t1 / t0)), True
 
 
+def seam_vertices(obj, vertices):
+    """Mask of `vertices` that lie where a vertex of another face lies too: the room's edges and
+    corners, the blocks' edges and the lines where they stand on the floor (each flat piece of the
+    box has vertices of its own)."""
+    positions = np.empty(len(obj.data.vertices) * 3)
+    obj.data.vertices.foreach_get("co", positions)
+    _, place, count = np.unique(np.round(positions.reshape(-1, 3)[vertices], 6), axis=0, return_inverse=True,
+                                return_counts=True)
+    return count[place.ravel()] > 1
+
+
 class Race:
     def __init__(self, args):
         self.args = args
@@ -129,12 +142,17 @@ class Race:
         self.stored, self.truth = deep_cycles.deep_truth(
             self.box, "cornell", args.truth_samples, args.truth_noise, 60 * args.truth_minutes, self.luminance,
             args.truth_cache, log=lambda s: print(s, flush=True))
+        self.seams = seam_vertices(self.box, self.luminance.vertices)
         self.rows = []
 
     def record(self, colors, seconds, **fields):
-        error, error_noise_out = self.truth.error(self.luminance(colors))
+        luminance = self.luminance(colors)
+        error, error_noise_out = self.truth.error(luminance)
         row = dict(fields, cpu_seconds="%.3f" % seconds.cpu, wall_seconds="%.3f" % seconds.wall,
-                   error="%.5f" % error, error_noise_out="%.5f" % error_noise_out, load="%.2f" % os.getloadavg()[0])
+                   error="%.5f" % error, error_noise_out="%.5f" % error_noise_out,
+                   error_seams="%.5f" % self.truth.error(luminance, self.seams)[1],
+                   error_elsewhere="%.5f" % self.truth.error(luminance, ~self.seams)[1],
+                   error_scaled="%.5f" % self.truth.scaled_error(luminance)[1], load="%.2f" % os.getloadavg()[0])
         print(row, flush=True)
         self.rows.append(row)
 
@@ -203,13 +221,16 @@ class Race:
             "(relative RMS per vertex); %d of %d vertices judged" % (
                 len(stored["seeds"]), int(stored["samples"]), float(np.mean(stored["cpu_seconds"])),
                 100 * self.truth.noise(), self.truth.judged.sum(), len(self.truth.judged)),
-            "Error: relative RMS luminance per vertex, measured / with the truth's noise taken out.",
+            "Error: relative RMS luminance per vertex, measured / with the truth's noise taken out; then (noise "
+            "out) on the %d seam vertices (edges, corners, contact lines: another face's vertex at the same place), "
+            "on the other %d, and as RMS difference / RMS of the truth (bright vertices weigh more)" % (
+                (self.seams & self.truth.judged).sum(), (~self.seams & self.truth.judged).sum()),
             "", "Cycles (no denoiser), samples: CPU s, wall s, error"]
         for r in self.rows:
             if r["kind"] == "cycles":
-                lines.append("  %6d: %8s CPU s %8s s  %.2f%% / %.2f%%" % (
+                lines.append("  %6d: %8s CPU s %8s s  %.2f%% / %.2f%%; %s" % (
                     int(r["samples"]), r["cpu_seconds"], r["wall_seconds"], 100 * float(r["error"]),
-                    100 * float(r["error_noise_out"])))
+                    100 * float(r["error_noise_out"]), split(r)))
         titles = {"preset": "Presets", "elements": "Medium's settings at other element sizes (divisions of the "
                                                    "scene's size)", "config": "Other settings (gather on)"}
         for kind, title in titles.items():
@@ -224,12 +245,17 @@ class Race:
                     same, " (extrapolated)" if r.get("extrapolated") else "", r["ratio_cpu"], r.get("ratio_wall", "?"))
                     if same else "worse than Cycles at its fewest samples")
                 lines.append("  %-6s %-10s div %2d cells %-3s rays %4s %6d el res %4d %8s CPU s %8s s  "
-                             "%.2f%% / %.2f%%   %s" % (
+                             "%.2f%% / %.2f%% (%s)   %s" % (
                                  r["quality"].lower(), "gather" if r["final_gather"] else "no gather",
                                  int(r["divisions"]), r["cells"], r["gather_rays"], int(r["elements"]),
                                  int(r["resolution"]), r["cpu_seconds"], r["wall_seconds"],
-                                 100 * float(r["error"]), 100 * float(r["error_noise_out"]), race))
+                                 100 * float(r["error"]), 100 * float(r["error_noise_out"]), split(r), race))
         return lines
+
+
+def split(row):
+    return "seams %.2f%%, elsewhere %.2f%%, scaled %.2f%%" % tuple(
+        100 * float(row[k]) for k in ("error_seams", "error_elsewhere", "error_scaled"))
 
 
 def main():

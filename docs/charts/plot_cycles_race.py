@@ -57,13 +57,16 @@ def draw_race(axis, rows, clock, xlabel):
 
 def draw_elements(axis, rows):
     for gather, style in (("1", "-o"), ("0", "--o")):
-        points = sorted((int(r["elements"]), float(r["error_noise_out"]), r["divisions"]) for r in rows
-                        if r["kind"] == "elements" and r["final_gather"] == gather)
+        points = sorted((int(r["elements"]), float(r["error_noise_out"]), float(r["error_elsewhere"]), r["divisions"])
+                        for r in rows if r["kind"] == "elements" and r["final_gather"] == gather)
         if not points:
             continue
+        on = "on" if gather == "1" else "off"
         axis.plot([p[0] for p in points], [p[1] for p in points], style, color="tab:blue",
-                  label="Medium's settings, gather %s" % ("on" if gather == "1" else "off"))
-        for elements, error, divisions in points:
+                  label="Medium's settings, gather %s: all vertices" % on)
+        axis.plot([p[0] for p in points], [p[2] for p in points], style, color="tab:orange", markersize=3,
+                  label="gather %s: vertices off seams and contact lines" % on)
+        for elements, error, _, divisions in points:
             axis.annotate("size/%s" % divisions, (elements, error), textcoords="offset points", xytext=(4, 2),
                           fontsize=7)
     for r in rows:

@@ -38,6 +38,14 @@ class VertexErrorTest(unittest.TestCase):
         self.assertAlmostEqual(measured / math.hypot(bake_error, expected_noise), 1.0, delta=0.02)
         self.assertAlmostEqual(noise_out / bake_error, 1.0, delta=0.05)
 
+    def test_scaled_error_and_subsets(self):
+        truth = vertex_error.Truth([[1.0, 2.0, 4.0, 3.0], [1.0, 2.0, 4.0, 3.0]])  # no spread: no noise
+        bake = np.array([1.01, 2.02, 4.04, 3.0])
+        self.assertAlmostEqual(truth.scaled_error(bake)[1], math.sqrt(0.0021 / 4) / math.sqrt(30 / 4))
+        self.assertAlmostEqual(truth.error(bake)[1], math.sqrt(3 / 4) * 0.01)
+        self.assertAlmostEqual(truth.error(bake, subset=[True, True, False, False])[1], 0.01)
+        self.assertAlmostEqual(truth.error(bake, subset=[False, False, False, True])[1], 0.0)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -38,16 +38,35 @@ class Truth:
         self.mean = self.per_seed.mean(axis=0)
         self.judged = self.mean >= DARK_SHARE * self.mean.mean()
 
-    def noise(self):
-        """Relative RMS noise of the mean over the judged vertices (NaN with fewer than 2 seeds)."""
+    def _spread(self):
+        return self.per_seed.std(axis=0, ddof=1) / math.sqrt(self.seeds)
+
+    def noise(self, subset=None):
+        """Relative RMS noise of the mean over the judged vertices (of `subset`, a mask, if given;
+        NaN with fewer than 2 seeds)."""
         if self.seeds < 2:
             return math.nan
-        spread = self.per_seed[:, self.judged].std(axis=0, ddof=1) / math.sqrt(self.seeds)
-        return float(np.sqrt(np.mean((spread / self.mean[self.judged]) ** 2)))
+        where = self._where(subset)
+        return float(np.sqrt(np.mean((self._spread()[where] / self.mean[where]) ** 2)))
 
-    def error(self, vertex_luminance):
+    def error(self, vertex_luminance, subset=None):
         """(measured, with the truth's noise taken out) relative RMS error of a bake's vertices."""
+        where = self._where(subset)
+        values = np.asarray(vertex_luminance, dtype=np.float64)[where]
+        reference = self.mean[where]
+        measured = float(np.sqrt(np.mean(((values - reference) / reference) ** 2)))
+        return measured, math.sqrt(max(measured ** 2 - self.noise(subset) ** 2, 0.0))
+
+    def scaled_error(self, vertex_luminance):
+        """(measured, noise out) RMS difference over the RMS of the truth on the judged vertices:
+        the measure of docs/charts/bake_vs_cycles.py and lab/final_gather (per corner there), in
+        which bright vertices weigh more and dark ones less."""
         values = np.asarray(vertex_luminance, dtype=np.float64)[self.judged]
         reference = self.mean[self.judged]
-        measured = float(np.sqrt(np.mean(((values - reference) / reference) ** 2)))
-        return measured, math.sqrt(max(measured ** 2 - self.noise() ** 2, 0.0))
+        scale = math.sqrt(np.mean(reference ** 2))
+        measured = math.sqrt(np.mean((values - reference) ** 2)) / scale
+        noise = math.sqrt(np.mean(self._spread()[self.judged] ** 2)) / scale
+        return measured, math.sqrt(max(measured ** 2 - noise ** 2, 0.0))
+
+    def _where(self, subset):
+        return self.judged if subset is None else self.judged & np.asarray(subset, dtype=bool)
