@@ -43,8 +43,8 @@ step_cycles_race() {
       --addon-zip "$build/bake_radiosity.zip" --csv "$charts/cycles_race.csv" \
       --summary "$charts/cycles_race.txt" ${CYCLES_RACE_ARGS:-} > "$work/log.txt"
   /usr/bin/python3 "$charts/plot_cycles_race.py" "$charts/cycles_race.csv" "$charts/cycles_race.png" \
-    "$charts/cycles_race_elements.png"
-  cat "$charts/cycles_race.txt"
+    "$charts/cycles_race_elements.png" "$charts/cycles_race_off_seams.txt"
+  cat "$charts/cycles_race.txt" "$charts/cycles_race_off_seams.txt"
 }
 
 # Charts 1 and 3, the aliasing chart and the stability cases before and after (stability_before_after.png):

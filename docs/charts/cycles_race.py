@@ -26,7 +26,6 @@ field, gather on (auto_settings.PRESETS and GATHER_RAYS patched for the bake).""
 import argparse
 import csv
 import dataclasses
-import math
 import os
 import sys
 import time
@@ -40,6 +39,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "lab", "truth"))
 import deep_cycles  # noqa: E402
 import harness  # noqa: E402
 import scenes  # noqa: E402
+import vertex_error  # noqa: E402
 
 CYCLES_SAMPLES = (16, 64, 256, 1024, 4096, 16384, 32768)
 PRESETS = ("DRAFT", "MEDIUM", "HIGH")
@@ -100,25 +100,6 @@ def radiosity_bake(addon, obj, quality, final_gather, preset=None, gather_rays=N
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality,
                              final_gather=final_gather)
     return harness.corner_colors(obj.data, "Radiosity"), seconds, summary
-
-
-def time_to_reach(points, level):
-    """(seconds, extrapolated) at which Cycles' fastest-so-far error first falls to `level`, on the
-    log-log line between the bakes around it; past the ladder's end along its last two bakes;
-    None if `level` is above its first bake."""
-    front, best = [], math.inf
-    for seconds, error in sorted(points):
-        if error < best:
-            best = error
-            front.append((seconds, error))
-    if level >= front[0][1]:
-        return None, False
-    for (t0, e0), (t1, e1) in zip(front, front[1:]):
-        if e1 <= level:
-            fraction = math.log(level / e0) / math.log(e1 / e0)
-            return math.exp(math.log(t0) + fraction * math.log(t1 / t0)), False
-    (t0, e0), (t1, e1) = front[-2], front[-1]
-    return math.exp(math.log(t1) + math.log(level / e1) / math.log(e1 / e0) * math.log(t1 / t0)), True
 
 
 def seam_vertices(obj, vertices):
@@ -195,7 +176,7 @@ class Race:
             level = float(row["error_noise_out"])
             for clock, name in (("cpu_seconds", "cpu"), ("wall_seconds", "wall")):
                 points = [(float(c[clock]), float(c["error_noise_out"])) for c in cycles]
-                seconds, extrapolated = time_to_reach(points, level)
+                seconds, extrapolated = vertex_error.time_to_reach(points, level)
                 if seconds is None:
                     continue
                 row["cycles_%s_seconds_same_error" % name] = "%.2f" % seconds

@@ -1,21 +1,26 @@
 """The race charts from the CSV that cycles_race.py writes (Debian's python3-matplotlib):
 
     /usr/bin/python3 docs/charts/plot_cycles_race.py docs/charts/cycles_race.csv docs/charts/cycles_race.png \\
-        docs/charts/cycles_race_elements.png
+        docs/charts/cycles_race_elements.png docs/charts/cycles_race_off_seams.txt
 
 cycles_race.png: error against CPU seconds and against wall seconds, log-log: Cycles' sample ladder
 (black), the presets with the final gather (filled stars) and without (hollow), other settings
 (diamonds), issue 20's targets (Medium 1.5%, High 0.75%) as grey lines. cycles_race_elements.png:
 error against the solution's element count at Medium's settings, with and without the gather,
-with Cycles' error at its sample counts for scale. Errors have the truth's noise taken out."""
+with Cycles' error at its sample counts for scale. Errors have the truth's noise taken out. The
+fourth argument, if given, receives the race on the vertices off seams and contact lines."""
 
 import csv
+import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "lab", "truth"))
+import vertex_error  # noqa: E402
 
 TARGETS = ((0.015, "Medium's target 1.5%"), (0.0075, "High's target 0.75%"))
 PRESET_COLOURS = {"DRAFT": "tab:green", "MEDIUM": "tab:blue", "HIGH": "crimson"}
@@ -88,7 +93,26 @@ def draw_elements(axis, rows):
     axis.legend(fontsize=8)
 
 
-def main(csv_path, race_png, elements_png):
+def off_seam_lines(rows):
+    """The race on the vertices off seams and contact lines alone: each bake's error there, and
+    Cycles' CPU time to the same error on the same vertices."""
+    cycles = [(float(r["cpu_seconds"]), float(r["error_elsewhere"])) for r in rows if r["kind"] == "cycles"]
+    lines = ["On the vertices off seams and contact lines only (error there, noise out; Cycles' CPU s to the same "
+             "error there; ratio):"]
+    for r in rows:
+        if r["kind"] == "cycles":
+            continue
+        level = float(r["error_elsewhere"])
+        seconds, extrapolated = vertex_error.time_to_reach(cycles, level)
+        race = "worse than Cycles at its fewest samples" if seconds is None else "Cycles %.2f CPU s%s, %.1fx" % (
+            seconds, " (extrapolated)" if extrapolated else "", seconds / float(r["cpu_seconds"]))
+        lines.append("  %-8s %-6s gather %-3s div %2s cells %-3s rays %4s: %6.2f%% in %7.2f CPU s; %s" % (
+            r["kind"], r["quality"].lower(), "on" if r["final_gather"] == "1" else "off", r["divisions"], r["cells"],
+            r["gather_rays"], 100 * level, float(r["cpu_seconds"]), race))
+    return lines
+
+
+def main(csv_path, race_png, elements_png, off_seams_txt=None):
     rows = read(csv_path)
     figure, axes = plt.subplots(1, 2, figsize=(15, 6.5))
     draw_race(axes[0], rows, "cpu_seconds", "CPU seconds of the whole bake (all threads)")
@@ -104,6 +128,12 @@ def main(csv_path, race_png, elements_png):
     figure.tight_layout()
     figure.savefig(elements_png, dpi=110)
 
+    lines = off_seam_lines(rows)
+    print("\n".join(lines))
+    if off_seams_txt:
+        with open(off_seams_txt, "w") as out:
+            out.write("\n".join(lines) + "\n")
+
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    main(*sys.argv[1:5])

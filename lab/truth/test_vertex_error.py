@@ -46,6 +46,17 @@ class VertexErrorTest(unittest.TestCase):
         self.assertAlmostEqual(truth.error(bake, subset=[True, True, False, False])[1], 0.01)
         self.assertAlmostEqual(truth.error(bake, subset=[False, False, False, True])[1], 0.0)
 
+    def test_time_to_reach_on_a_power_law(self):
+        points = [(4.0, 0.05), (1.0, 0.1), (16.0, 0.025), (8.0, 0.06)]  # error = 0.1 / sqrt(t); (8, 6%) slower
+        self.assertEqual(vertex_error.time_to_reach(points, 0.05), (4.0, False))
+        seconds, extrapolated = vertex_error.time_to_reach(points, 0.1 / math.sqrt(8))
+        self.assertAlmostEqual(seconds, 8.0)
+        self.assertFalse(extrapolated)
+        seconds, extrapolated = vertex_error.time_to_reach(points, 0.0125)
+        self.assertAlmostEqual(seconds, 64.0)
+        self.assertTrue(extrapolated)
+        self.assertEqual(vertex_error.time_to_reach(points, 0.2), (None, False))
+
 
 if __name__ == "__main__":
     unittest.main()

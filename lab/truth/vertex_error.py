@@ -70,3 +70,22 @@ class Truth:
 
     def _where(self, subset):
         return self.judged if subset is None else self.judged & np.asarray(subset, dtype=bool)
+
+
+def time_to_reach(points, level):
+    """(seconds, extrapolated) at which Cycles' fastest-so-far error first falls to `level`, on the
+    log-log line between the bakes around it; past the ladder's end along its last two bakes;
+    None if `level` is above its first bake."""
+    front, best = [], math.inf
+    for seconds, error in sorted(points):
+        if error < best:
+            best = error
+            front.append((seconds, error))
+    if level >= front[0][1]:
+        return None, False
+    for (t0, e0), (t1, e1) in zip(front, front[1:]):
+        if e1 <= level:
+            fraction = math.log(level / e0) / math.log(e1 / e0)
+            return math.exp(math.log(t0) + fraction * math.log(t1 / t0)), False
+    (t0, e0), (t1, e1) = front[-2], front[-1]
+    return math.exp(math.log(t1) + math.log(level / e1) / math.log(e1 / e0) * math.log(t1 / t0)), True
