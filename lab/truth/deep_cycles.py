@@ -2,7 +2,8 @@
 to judge a bake at 0.5% (issue 20). Run inside Blender:
 
     blender -b --factory-startup --python-exit-code 1 --python lab/truth/deep_cycles.py -- \\
-        [--scene cornell] [--samples 4096] [--target-noise 0.003] [--max-minutes 60] [--cache DIR]
+        [--scene cornell|small-emitter|cluttered] [--samples 4096] [--target-noise 0.003] \\
+        [--max-minutes 60] [--cache DIR]
 
 Each seed is Cycles' Combined bake to the corners with unbiased light paths
 (harness.use_unbiased_cycles: 128 bounces, no clamping, no denoiser, no adaptive sampling) at
@@ -137,7 +138,16 @@ def deep_truth(obj, name, samples, target_noise, max_seconds, luminance, folder=
     return stored, truth
 
 
-SCENES = {"cornell": (lambda: scenes.cornell_box("MESH"), CORNELL_EMITTER_MATERIAL)}
+def awkward_room(scene, **keywords):
+    """A room of lab/awkward_rooms/measure.py (its Room object: the emitting panel is another object)."""
+    sys.path.insert(0, os.path.join(ROOT, "lab", "awkward_rooms"))
+    import measure
+    return measure.build(scene, **keywords)
+
+
+SCENES = {"cornell": (lambda: scenes.cornell_box("MESH"), CORNELL_EMITTER_MATERIAL),
+          "small-emitter": (lambda: awkward_room("small-emitter", emitter_side=0.01, blocks=0), None),
+          "cluttered": (lambda: awkward_room("cluttered", emitter_side=0.01, blocks=1000), None)}
 
 
 def main():
