@@ -2,7 +2,7 @@
 # Regenerates every chart in docs/charts/ (CSV + PNG) from a build of the current tree:
 #
 #   tools/make_charts.sh            all charts
-#   tools/make_charts.sh bake_vs_cycles   one chart by its step name
+#   tools/make_charts.sh cycles_race   one chart by its step name
 #
 # Each chart is one step function below: it writes its CSV (and any text it prints) into
 # docs/charts/ and plots the PNG with Debian's matplotlib (/usr/bin/python3). Add a chart by
@@ -31,6 +31,22 @@ step_bake_vs_cycles() {
     "$charts/bake_vs_cycles_ratios.txt"
 }
 
+# The race against Cycles (issue 20): Cycles' sample ladder and the presets with the final gather on
+# and off, against a deep Cycles truth cached outside git ($BAKE_RADIOSITY_TRUTH or build/truth; made
+# when missing: 1,330 CPU s, 34 minutes on 2 busy cores), then error against element count. About
+# 7 minutes on 2 busy cores once the truth is cached.
+step_cycles_race() {
+  local work=$build/charts/cycles_race
+  mkdir -p "$work"
+  BLENDER_USER_SCRIPTS=$work/scripts BLENDER_USER_CONFIG=$work/config \
+    blender -b --factory-startup --python-exit-code 1 --python "$charts/cycles_race.py" -- \
+      --addon-zip "$build/bake_radiosity.zip" --csv "$charts/cycles_race.csv" \
+      --summary "$charts/cycles_race.txt" ${CYCLES_RACE_ARGS:-} > "$work/log.txt"
+  /usr/bin/python3 "$charts/plot_cycles_race.py" "$charts/cycles_race.csv" "$charts/cycles_race.png" \
+    "$charts/cycles_race_elements.png" "$charts/cycles_race_off_seams.txt"
+  cat "$charts/cycles_race.txt" "$charts/cycles_race_off_seams.txt"
+}
+
 # Charts 1 and 3, the aliasing chart and the stability cases before and after (stability_before_after.png):
 # native measurements (radiosity_charts, about 2 minutes).
 step_native() {
@@ -52,7 +68,7 @@ step_hierarchy() {
   /usr/bin/python3 "$charts/plot_hierarchy.py" "$charts"
 }
 
-STEPS=(native bake_vs_cycles hierarchy)
+STEPS=(native bake_vs_cycles cycles_race hierarchy)
 
 RADIOSITY_BUILD_LAB=ON "$root/tools/build.sh"
 ensure_plotting

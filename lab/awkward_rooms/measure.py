@@ -102,4 +102,5 @@ def main():
     print("energy:", summary["energy"])
 
 
-main()
+if __name__ == "__main__":
+    main()
