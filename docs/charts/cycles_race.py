@@ -89,14 +89,15 @@ def cycles_bake(obj, samples, seed):
 
 def radiosity_bake(addon, obj, quality, final_gather, preset=None, gather_rays=None):
     """(corner colours, Stopwatch, summary) of a whole add-on bake; `preset` replaces the quality's
-    auto_settings preset and `gather_rays` the gather's rays for this bake."""
+    auto_settings preset and `gather_rays` the rays of its gathered solution for this bake."""
     auto_settings = sys.modules["bake_radiosity.auto_settings"]
     presets = dict(auto_settings.PRESETS)
     if preset is not None:
         presets[quality] = preset
-    rays = gather_rays or auto_settings.GATHER_RAYS
-    with harness.patched_setting("PRESETS", presets), harness.patched_setting("GATHER_RAYS", rays), \
-            Stopwatch() as seconds:
+    if gather_rays:
+        presets[quality] = dataclasses.replace(presets[quality],
+                                               gathered=dataclasses.replace(presets[quality].gathered, rays=gather_rays))
+    with harness.patched_setting("PRESETS", presets), Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality,
                              final_gather=final_gather)
     return harness.corner_colors(obj.data, "Radiosity"), seconds, summary
@@ -150,13 +151,15 @@ class Race:
             for gather in (True, False):
                 self.bake_row("preset", quality, gather)
         medium = sys.modules["bake_radiosity.auto_settings"].PRESETS["MEDIUM"]
+        # With the gather a preset solves its gathered solution (auto_settings.Gathered): vary that one.
         for divisions in ELEMENT_DIVISIONS if args.elements else ():
-            for gather in (True, False):
-                self.bake_row("elements", "MEDIUM", gather, dataclasses.replace(medium, divisions=divisions))
+            self.bake_row("elements", "MEDIUM", True,
+                          dataclasses.replace(medium, gathered=dataclasses.replace(medium.gathered, divisions=divisions)))
+            self.bake_row("elements", "MEDIUM", False, dataclasses.replace(medium, divisions=divisions))
         for config in filter(None, args.configs.split(",")):
             divisions, cells, rays = config.split("/")
-            preset = dataclasses.replace(medium, divisions=int(divisions), cells=float(cells))
-            self.bake_row("config", "MEDIUM", True, preset, int(rays))
+            gathered = dataclasses.replace(medium.gathered, divisions=int(divisions), cells=float(cells))
+            self.bake_row("config", "MEDIUM", True, dataclasses.replace(medium, gathered=gathered), int(rays))
         self.load_end = os.getloadavg()
         self.add_ratios()
 
@@ -164,6 +167,7 @@ class Race:
         colors, seconds, summary = radiosity_bake(self.addon, self.box, quality, gather, preset, rays)
         auto_settings = sys.modules["bake_radiosity.auto_settings"]
         used = preset or auto_settings.PRESETS[quality]
+        used = used.gathered if gather else used  # the solution the bake solved
         self.record(colors, seconds, kind=kind, quality=quality, final_gather=int(gather), divisions=used.divisions,
                     cells="%g" % used.cells, gather_rays=summary.get("gather_rays", 0), elements=summary["elements"],
                     resolution=summary["resolution"])
