@@ -153,8 +153,8 @@ class Race:
         medium = sys.modules["bake_radiosity.auto_settings"].PRESETS["MEDIUM"]
         # With the gather a preset solves its gathered solution (auto_settings.Gathered): vary that one.
         for divisions in ELEMENT_DIVISIONS if args.elements else ():
-            self.bake_row("elements", "MEDIUM", True,
-                          dataclasses.replace(medium, gathered=dataclasses.replace(medium.gathered, divisions=divisions)))
+            gathered = dataclasses.replace(medium.gathered, divisions=divisions)
+            self.bake_row("elements", "MEDIUM", True, dataclasses.replace(medium, gathered=gathered))
             self.bake_row("elements", "MEDIUM", False, dataclasses.replace(medium, divisions=divisions))
         for config in filter(None, args.configs.split(",")):
             divisions, cells, rays = config.split("/")
