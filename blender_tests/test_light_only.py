@@ -215,10 +215,21 @@ def test_full_radiance_wiring_and_hierarchical():
     assert bpy.ops.radiosity.unwire() == {"FINISHED"}
 
 
+def test_copies_hold_the_light_too():
+    scene(textured=True)
+    addon.bake(bpy.context.scene, target="COPIES", write_light_only=True, **SETTINGS)
+    copy = next(o for o in bpy.data.objects if o.get("radiosity_bake_copy") == "Wall")
+    assert copy.data.color_attributes.active_color.name == "Radiosity"
+    light = harness.corner_colors(copy.data, "Radiosity Light")
+    np.testing.assert_allclose(light * WALL_ALBEDO, harness.corner_colors(copy.data, "Radiosity"), rtol=1e-5,
+                               atol=1e-7)
+    assert light.min() > 0.0
+
+
 def test_batch_option():
     assert cli.overrides_of(cli.parse(["--write-light-only"])) == {"write_light_only": True}
     assert "write_light_only" not in cli.overrides_of(cli.parse([]))
 
 
 harness.run(test_light_times_albedo_is_the_radiance, test_light_matches_cycles_diffuse_bake, test_wire_and_unwire,
-            test_full_radiance_wiring_and_hierarchical, test_batch_option)
+            test_full_radiance_wiring_and_hierarchical, test_copies_hold_the_light_too, test_batch_option)
