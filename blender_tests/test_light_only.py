@@ -215,6 +215,24 @@ def test_full_radiance_wiring_and_hierarchical():
     assert bpy.ops.radiosity.unwire() == {"FINISHED"}
 
 
+def test_wiring_a_principled_bsdf():
+    """A Principled BSDF's Base Color (here a value, no texture) multiplies the light, whose socket
+    names are the same in Blender 3.4 to 5.x."""
+    floor, wall, _ = scene(textured=True)
+    material = bpy.data.materials.new("Principled Wall")
+    material.use_nodes = True
+    bsdf = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    bsdf.inputs["Base Color"].default_value = (WALL_ALBEDO, 0.4, 0.3, 1.0)
+    wall.data.materials[0] = material
+    original = tree_state(material)
+    addon.bake(bpy.context.scene, write_light_only=True, **SETTINGS)
+    assert bpy.ops.radiosity.wire() == {"FINISHED"}
+    expected = harness.corner_colors(wall.data, "Radiosity Light") * (WALL_ALBEDO, 0.4, 0.3)
+    np.testing.assert_allclose(emit_bake(wall), expected, rtol=1e-3, atol=1e-5)
+    assert bpy.ops.radiosity.unwire() == {"FINISHED"}
+    assert tree_state(material) == original
+
+
 def test_copies_hold_the_light_too():
     scene(textured=True)
     addon.bake(bpy.context.scene, target="COPIES", write_light_only=True, **SETTINGS)
@@ -232,4 +250,5 @@ def test_batch_option():
 
 
 harness.run(test_light_times_albedo_is_the_radiance, test_light_matches_cycles_diffuse_bake, test_wire_and_unwire,
-            test_full_radiance_wiring_and_hierarchical, test_copies_hold_the_light_too, test_batch_option)
+            test_full_radiance_wiring_and_hierarchical, test_wiring_a_principled_bsdf,
+            test_copies_hold_the_light_too, test_batch_option)
