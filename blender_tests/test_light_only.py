@@ -177,6 +177,11 @@ def test_wire_and_unwire():
     floor, wall, _ = scene(textured=True)
     addon.bake(bpy.context.scene, write_light_only=True, **SETTINGS)
     originals = {m.name: tree_state(m) for m in bpy.data.materials}
+    # While the preview shows, the slots hold its material: nothing is wired.
+    assert bpy.ops.radiosity.preview() == {"FINISHED"}
+    assert bpy.ops.radiosity.wire() == {"CANCELLED"}
+    assert bpy.ops.radiosity.preview() == {"FINISHED"}
+    assert {m.name: tree_state(m) for m in bpy.data.materials} == originals
     assert bpy.ops.radiosity.wire() == {"FINISHED"}
     for obj in (floor, wall):
         tree = obj.active_material.node_tree

@@ -188,7 +188,7 @@ class RADIOSITY_OT_wire(bpy.types.Operator):
 
     def execute(self, context):
         if preview.is_active(context.scene):
-            self.report({"ERROR"}, "Restore Shading first: the preview has replaced the materials to wire")
+            self.report({"WARNING"}, "Restore Shading first: the preview has replaced the materials to wire")
             return {"CANCELLED"}
         wired, messages = wiring.wire(context.scene)
         for message in messages:
