@@ -7,7 +7,7 @@ import threading
 
 import bpy
 
-from . import native, overlay, pipeline, preview
+from . import native, overlay, pipeline, preview, wiring
 
 _running = None  # the operator instance baking now; one bake at a time
 
@@ -178,7 +178,39 @@ class RADIOSITY_OT_preview(bpy.types.Operator):
         return {"FINISHED"}
 
 
-CLASSES = (RADIOSITY_OT_bake, RADIOSITY_OT_preview)
+class RADIOSITY_OT_wire(bpy.types.Operator):
+    bl_idname = "radiosity.wire"
+    bl_label = "Wire Baked Light"
+    bl_description = ("Put the baked light into the baked objects' materials, for Material Preview and renders: "
+                      "an emission of the light-only attribute times the material's colour (or texture), or of the "
+                      "baked attribute itself")
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        if preview.is_active(context.scene):
+            self.report({"WARNING"}, "Restore Shading first: the preview has replaced the materials to wire")
+            return {"CANCELLED"}
+        wired, messages = wiring.wire(context.scene)
+        for message in messages:
+            self.report({"WARNING"}, message)
+        if wired:
+            self.report({"INFO"}, "Wired the baked light into %d material(s)" % wired)
+        return {"FINISHED"} if wired else {"CANCELLED"}
+
+
+class RADIOSITY_OT_unwire(bpy.types.Operator):
+    bl_idname = "radiosity.unwire"
+    bl_label = "Unwire Baked Light"
+    bl_description = "Remove exactly the nodes and links Wire Baked Light added, restoring the materials"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        count = wiring.unwire(context.scene)
+        self.report({"INFO"}, "Unwired %d material(s)" % count)
+        return {"FINISHED"}
+
+
+CLASSES = (RADIOSITY_OT_bake, RADIOSITY_OT_preview, RADIOSITY_OT_wire, RADIOSITY_OT_unwire)
 
 
 def register():

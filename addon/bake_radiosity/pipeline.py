@@ -15,7 +15,7 @@ from .errors import BakeError
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
                  "memory_budget", "hard_edge_angle", "attribute_name", "target", "separate_linked_duplicates",
-                 "final_gather",
+                 "final_gather", "write_light_only",
                  "zone_size", "media_folder")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")

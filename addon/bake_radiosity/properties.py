@@ -106,6 +106,14 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="Name of the face-corner colour attribute that receives the baked light",
         default="Radiosity",
     )
+    write_light_only: BoolProperty(
+        name="Also Write Light Only",
+        description="Also write the light arriving without the surface's colour (irradiance / pi, as Cycles' Diffuse "
+                    "bake with Direct and Indirect and without Color) into the attribute '<Attribute> Light': "
+                    "multiplied by a texture in the shader, it lights the texture at full resolution "
+                    "(not with the hierarchical method or media)",
+        default=False,
+    )
     final_gather: BoolProperty(
         name="Final Gather",
         description="Light each corner of the meshes where it is: direct light from every lamp and emitter at the "

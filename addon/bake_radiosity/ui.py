@@ -32,6 +32,9 @@ def draw_panel(layout, context):
     showing = preview.is_active(context.scene)
     layout.operator("radiosity.preview", text="Restore Shading" if showing else "Preview Bake",
                     icon="HIDE_OFF" if showing else "SHADING_SOLID", depress=showing)
+    row = layout.row(align=True)
+    row.operator("radiosity.wire", icon="NODETREE")
+    row.operator("radiosity.unwire", icon="X")
     if settings.last_report:
         box = layout.box().column(align=True)
         for number, line in enumerate(wrapped_lines(settings.last_report, context)):
@@ -71,6 +74,7 @@ def draw_panel(layout, context):
     if settings.target == "ORIGINAL":
         column.prop(settings, "separate_linked_duplicates")
     column.prop(settings, "attribute_name")
+    column.prop(settings, "write_light_only")
     column.separator()
     column.prop(settings, "zone_size")
     column.prop(settings, "media_folder")

@@ -9,12 +9,28 @@ from .export import COPY_TAG
 COLLECTION_NAME = "Radiosity Bake"
 
 
+LIGHT_SUFFIX = " Light"
+
+
+def light_attribute_name(attribute_name):
+    """The attribute that holds the light-only output beside `attribute_name`."""
+    return attribute_name + LIGHT_SUFFIX
+
+
 def write(scene, exported, result, settings):
     """Writes `result` as `settings` ask and returns warnings about what could not be written."""
+    name = settings["attribute_name"]
+    outputs = [(name, "corner_radiance", "element_corner_radiance")]
+    warnings = []
+    if settings.get("write_light_only"):
+        if len(result.get("corner_light", ())) == len(result["corner_radiance"]):
+            outputs.append((light_attribute_name(name), "corner_light", "element_corner_light"))
+        else:
+            warnings.append("Light only is not available with the hierarchical method or with media (fog, smoke): "
+                            "only '%s' was written; bake with Method Gauss-Seidel, Jacobi or Progressive" % name)
     if settings["target"] == "ORIGINAL":
-        return _write_original(exported, result["corner_radiance"], settings["attribute_name"],
-                               settings["separate_linked_duplicates"])
-    return _write_copies(scene, exported, result, settings["attribute_name"])
+        return _write_original(exported, result, outputs, settings["separate_linked_duplicates"]) + warnings
+    return _write_copies(scene, exported, result, outputs) + warnings
 
 
 def set_color_attribute(mesh, name, rgb):
@@ -33,7 +49,9 @@ def set_color_attribute(mesh, name, rgb):
     mesh.update()
 
 
-def _write_original(exported, corner_radiance, name, separate_linked_duplicates):
+def _write_original(exported, result, outputs, separate_linked_duplicates):
+    """`outputs`: (attribute name, result key of its input corners, of its element corners); the first
+    becomes the active and render colour."""
     written, refused, shared, separated = set(), {}, [], []
     for part in exported.parts:
         if part.unwritable:
@@ -49,12 +67,14 @@ def _write_original(exported, corner_radiance, name, separate_linked_duplicates)
             obj.data = obj.data.copy()  # materials and attributes come along
             separated.append(part.object_name)
         mesh = obj.data
-        if _name_taken_by_other_attribute(mesh, name):
-            refused.setdefault("a non-colour attribute is named '%s'" % name, []).append(part.object_name)
+        taken = [name for name, _, _ in outputs if _name_taken_by_other_attribute(mesh, name)]
+        if taken:
+            refused.setdefault("a non-colour attribute is named '%s'" % taken[0], []).append(part.object_name)
             continue
-        rgb = np.empty((len(mesh.loops), 3), dtype=np.float32)
-        rgb[part.corner_order] = corner_radiance[part.corner_start:part.corner_stop]
-        set_color_attribute(mesh, name, rgb)
+        for name, key, _ in reversed(outputs):  # the first written last: it stays the active colour
+            rgb = np.empty((len(mesh.loops), 3), dtype=np.float32)
+            rgb[part.corner_order] = result[key][part.corner_start:part.corner_stop]
+            set_color_attribute(mesh, name, rgb)
         written.add(part.object_name)
     warnings = []
     if shared:
@@ -98,7 +118,7 @@ def _copies_collection(scene):
     return collection
 
 
-def _write_copies(scene, exported, result, name):
+def _write_copies(scene, exported, result, outputs):
     remove_copies()
     collection = _copies_collection(scene)
     # An emitter's back side (element_back) is solved but not drawn: the copy shows each face's front.
@@ -111,14 +131,14 @@ def _write_copies(scene, exported, result, name):
         elements = by_polygon[first:last]
         if len(elements) == 0:
             continue
-        mesh = _element_mesh("%s %s" % (part.object_name, name), name, result, elements, part)
+        mesh = _element_mesh("%s %s" % (part.object_name, outputs[0][0]), outputs, result, elements, part)
         obj = bpy.data.objects.new(mesh.name, mesh)
         obj[COPY_TAG] = part.object_name
         collection.objects.link(obj)
     return []
 
 
-def _element_mesh(mesh_name, attribute_name, result, elements, part):
+def _element_mesh(mesh_name, outputs, result, elements, part):
     corners = result["element_corners"][elements]
     used = corners >= 0
     counts = used.sum(axis=1).astype(np.int32)
@@ -138,5 +158,6 @@ def _element_mesh(mesh_name, attribute_name, result, elements, part):
     mesh.update(calc_edges=True)
     for material_name in part.material_names:
         mesh.materials.append(bpy.data.materials.get(material_name) if material_name else None)
-    set_color_attribute(mesh, attribute_name, result["element_corner_radiance"][elements][used])
+    for name, _, key in reversed(outputs):  # the first written last: it stays the active colour
+        set_color_attribute(mesh, name, result[key][elements][used])
     return mesh

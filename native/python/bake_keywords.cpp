@@ -72,6 +72,11 @@ void add_bake_result(const BakeResult& result, py::dict& out) {
 
     add_elements(result.build, out);
     add_surface_solution(result.build.elements, result.solve.radiance, result.colors, out);
+    // The light arriving without the surface's colour (BakeResult::light_colors; the zonal bake has none).
+    if (result.light_colors.input_corner.size() == result.colors.input_corner.size()) {
+        out["corner_light"] = to_numpy(result.light_colors.input_corner);
+        out["element_corner_light"] = element_corner_array(result.light_colors.element_corner);
+    }
     out["iterations"] = result.solve.iterations;
     out["shots"] = result.solve.shots;
     out["residual"] = result.solve.residual;

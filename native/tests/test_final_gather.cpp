@@ -177,6 +177,40 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
     }
 }
 
+TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
+    // The light arriving under the lamp is I / (pi h^2), whatever the colour, and light x rho is the
+    // radiance at every corner. A channel of reflectance 0: the gather still finds its light; the
+    // interpolated light is 0 there (nothing in the element's radiance tells it).
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.0, 0.7), I(1.0, 2.0, 3.0);
+    test::SceneArrays s;
+    add_floor(s, rho);
+    for (const bool gather : {false, true}) {
+        BakeSettings settings = gather_settings(0.5f, gather);
+        PointLight lamp;
+        lamp.position = Vec3(0.0f, 0.0f, float(h));
+        lamp.intensity = I;
+        settings.lights.points.push_back(lamp);
+        const BakeResult r = bake(s.input(), settings);
+        ASSERT_EQ(r.light_colors.input_corner.size(), r.colors.input_corner.size());
+        for (std::size_t c = 0; c < r.colors.input_corner.size(); ++c)
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(r.light_colors.input_corner[c][k] * rho[k], r.colors.input_corner[c][k],
+                            1e-6 * (1.0 + r.colors.input_corner[c][k]));
+        const Rgb expected = I / (M_PI * h * h);
+        for (const std::size_t c : corners_at(s, Vec3(0.0f))) {
+            const Rgb& light = r.light_colors.input_corner[c];
+            std::printf("gather %d: light under the lamp %.5f %.5f %.5f, exact %.5f %.5f %.5f\n", int(gather),
+                        light.r, light.g, light.b, expected.r, expected.g, expected.b);
+            if (gather) {
+                for (int k = 0; k < 3; ++k) EXPECT_NEAR(light[k] / expected[k], 1.0, 1e-3);
+            } else {
+                EXPECT_EQ(light.g, 0.0);
+            }
+        }
+    }
+}
+
 TEST(FinalGather, FurnaceAtEveryCornerOfAClosedBox) {
     // Closed box, uniform E and rho: L = E / (1 - rho) everywhere, at each box corner too, where
     // three faces meet: the unoccluded factors to the other faces sum to 1, and no gather ray may

@@ -18,6 +18,18 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// Each element's light arriving, irradiance / pi, from B = E + rho H: H = (B - E) / rho per
+/// channel, 0 where rho is 0 (BakeResult::light_colors).
+std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>& radiance,
+                                const std::vector<Rgb>& emitted) {
+    std::vector<Rgb> light(elements.size(), Rgb(0.0));
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        for (int c = 0; c < 3; ++c)
+            if (elements.reflectance[e][c] > 0.0)
+                light[e][c] = std::max(0.0, (radiance[e][c] - emitted[e][c]) / elements.reflectance[e][c]);
+    return light;
+}
+
 }  // namespace
 
 std::size_t matrix_bytes_bound(std::size_t element_count, int resolution) {
@@ -98,6 +110,9 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
 
     start = Clock::now();
     result.colors = interpolate_corners(elements, result.solve.radiance, input.material, settings.hard_edge_angle);
+    result.light_colors =
+        interpolate_corners(elements, light_arriving(elements, result.solve.radiance, emitted), input.material,
+                            settings.hard_edge_angle);
     result.seconds_interpolate = seconds_since(start);
 
     if (settings.final_gather.enabled) {
@@ -105,7 +120,8 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         const detail::GatherCounts counts =
             detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.world,
                                  settings.final_gather,
-                                 input.material, settings.hard_edge_angle, result.colors, progress);
+                                 input.material, settings.hard_edge_angle, result.colors, result.light_colors,
+                                 progress);
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);

@@ -66,6 +66,13 @@ struct BakeResult {
     BuildResult build;
     SolveResult solve;
     CornerColors colors;
+    /// The light arriving at the same corners without the surface's colour, irradiance / pi (as
+    /// Cycles' Diffuse bake with Direct and Indirect and without Color): for a surface that does
+    /// not emit, light x reflectance = colors. Without the final gather it is interpolated from
+    /// each element's (radiance - own emission) / reflectance, and is 0 in a channel whose
+    /// reflectance is 0 (such a surface reflects nothing there, whatever light arrives); with the
+    /// gather, the gathered output corners hold the light the gather found, whatever the colour.
+    CornerColors light_colors;
     bool matrix_stored = false;        ///< F stored (exact system) or rows rendered on demand
     std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
     std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
