@@ -95,8 +95,8 @@ def radiosity_bake(addon, obj, quality, final_gather, preset=None, gather_rays=N
     if preset is not None:
         presets[quality] = preset
     if gather_rays:
-        presets[quality] = dataclasses.replace(presets[quality],
-                                               gathered=dataclasses.replace(presets[quality].gathered, rays=gather_rays))
+        gathered = dataclasses.replace(presets[quality].gathered, rays=gather_rays)
+        presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
     with harness.patched_setting("PRESETS", presets), Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality,
                              final_gather=final_gather)
