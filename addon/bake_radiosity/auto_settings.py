@@ -59,12 +59,13 @@ class Preset:
 # Final Gather (Lischinski, Tampieri & Greenberg 1993's local pass; the final gather of photon
 # maps): every output corner takes its direct light from each emitter and lamp at the point and its
 # indirect light from rays into the solution, corners next to seams again from the seams' gathered
-# light. The presets' gathered solutions, against Cycles on the Cornell box (lab/final_gather,
-# 2 x 8192 samples, its noise taken out): Draft 432 elements and 256 rays 1.87% RMS in 0.13 CPU s;
-# Medium 1,728 elements and 1024 rays 0.68% in 0.66 s; High 3,888 elements, near field and 4096
-# rays 0.44% in 3.2 s. The ungathered Medium solution (6,912 elements) with 1024 rays: 0.72% in 4.7 s.
+# light. The presets' gathered solutions on the Cornell box, per vertex against a deep Cycles truth
+# with Cycles timed in the same run (docs/accuracy.md, the race): Draft 1,728 elements and 256 rays
+# 4.4% in 0.33 CPU s (Cycles 14x as long for that error; at 1/8 of the scene, 432 elements, 11.6%);
+# Medium the same elements and 1024 rays 2.5% in 0.60 s (25x); High 3,888 elements, near field and
+# 4096 rays 2.0% in 3.0 s (8.9x). The ungathered Medium solution (6,912 elements): 5.4% in 3.8 s.
 PRESETS = {
-    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(8, 4.0, near_field=False, rays=256)),
+    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True, gathered=Gathered(16, 4.0, near_field=False, rays=1024)),
     "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True, gathered=Gathered(24, 6.0, near_field=True, rays=4096)),
 }

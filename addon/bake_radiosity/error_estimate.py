@@ -23,14 +23,14 @@ MEASURED = (
     (6848, 0.0136, 0.0278),
     (15408, 0.0087, 0.0224),
 )
-# The same box baked by the presets with the final gather (their gathered solutions: 256, 1024 and
-# 4096 rays a corner; lab/final_gather/README.md): (elements, relative RMS corner error against
-# Cycles at 2 x 8192 samples, its noise taken out), Draft, Medium and High.
-MEASURED_GATHER = (
-    (432, 0.0187),
-    (1728, 0.0068),
-    (3888, 0.0044),
-)
+# The same box with the final gather (lab/final_gather/README.md), by the gather's rays a corner:
+# (elements, relative RMS corner error against Cycles at 2 x 8192 samples, its noise taken out).
+# The presets bake 1,728 elements with 256 (Draft) and 1024 rays (Medium), 3,888 with 4096 (High).
+MEASURED_GATHER = {
+    256: ((432, 0.0181), (1728, 0.0124), (6912, 0.0127)),
+    1024: ((1728, 0.0068), (6912, 0.0072), (15552, 0.0049)),
+    4096: ((1728, 0.0063), (3888, 0.0041), (6912, 0.0055), (15552, 0.0033)),
+}
 
 
 @dataclass(frozen=True)
@@ -41,16 +41,19 @@ class ErrorEstimate:
     discretisation_relation: str     # "about"; beyond the measured element counts "at least" / "at most"
 
 
-def estimate(result, power=None):
-    """ErrorEstimate of a `_core.bake` result; with the final gather, against Cycles alone (the
-    gather is measured against nothing else). The table's value is only a typical size: a bake
+def estimate(result, power=None, gather_rays=0):
+    """ErrorEstimate of a `_core.bake` result; with the final gather (of `gather_rays` rays a corner:
+    the measurement with the nearest count), against Cycles alone (the gather is measured against
+    nothing else). The table's value is only a typical size: a bake
     whose surfaces (and zones) absorbed more than was emitted (`power`, an energy.EnergyBalance,
     by default energy.balance(result)) made that light from nothing, so its error is at least that
     share, whatever the table says for its element count."""
     elements = int((~result["element_back"]).sum())  # as measured: emitters' back sides are not shown
     if result.get("final_gather"):
-        relation = _relation(elements, MEASURED_GATHER)
-        discretisation = vs_cycles = _interpolate(elements, 1, MEASURED_GATHER)
+        rays = min(MEASURED_GATHER, key=lambda measured: abs(math.log(max(gather_rays, 1) / measured)))
+        table = MEASURED_GATHER[rays]
+        relation = _relation(elements, table)
+        discretisation = vs_cycles = _interpolate(elements, 1, table)
     else:
         relation = _relation(elements)
         discretisation, vs_cycles = _interpolate(elements, 1), _interpolate(elements, 2)

@@ -180,7 +180,7 @@ class BakeJob:
         seconds_writeback = time.perf_counter() - start
         r, c = self.result, self.choice
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
-        error = error_estimate.estimate(r, power)
+        error = error_estimate.estimate(r, power, self.choice.gather_rays)
         summary = {
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
