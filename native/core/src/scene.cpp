@@ -254,15 +254,14 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
     // Counts first, checked against the cap in double, before any element is made. A polygon that
     // emits from both sides has its elements each get a back side (add_back_sides): they count twice.
-    const bool emits = emits_behind;
     auto check_cap = [&](double elements) {
-        if (emits) elements *= 2.0;
+        if (emits_behind) elements *= 2.0;
         if (double(out.size() + back_sides) + elements > double(limits.max_elements)) {
             char what[200];
             std::snprintf(what, sizeof what,
                           "element_size %g m would make %.3g elements from this polygon%s, beyond the cap of %zu "
                           "for the scene; raise element_size",
-                          double(max_edge), elements, emits ? " (both sides: it emits)" : "", limits.max_elements);
+                          double(max_edge), elements, emits_behind ? " (both sides: it emits)" : "", limits.max_elements);
             throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
     };
@@ -344,7 +343,7 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             }
         }
     }
-    if (emits) back_sides += out.size() - first_element;
+    if (emits_behind) back_sides += out.size() - first_element;
     std::vector<int32_t> corners(p.size());
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
