@@ -133,11 +133,10 @@ def test_copies_show_the_front():
 
 
 def test_an_area_lamp_lights_from_its_front_only():
-    """An area lamp in the panel's place (Cycles' area lamps emit from their front only): nothing lights
-    the ceiling 1 cm over its back but the room, in the uniform and the hierarchical bake (a two-sided
-    lamp made it about 7 there, 36 times Cycles). Cycles' lamps block no light either, so its ceiling
-    over the lamp keeps the room's light (0.19) where the bake's black lamp shades it (0.0002): the
-    ceiling's mean is 6% dark, which the user guide's known limits say."""
+    """An area lamp in the panel's place: Cycles' area lamps emit from their front only and block no
+    light, so the ceiling 1 cm over the lamp's back keeps the room's light (0.19 in Cycles; a two-sided
+    lamp made it about 7, a lamp that blocks light 0.0002). The uniform bake as Cycles; the
+    hierarchical bake's lamps still block light there (the user guide's known limits)."""
     room = room_with_panel()
     panel = bpy.data.objects["Panel"]
     lamp = bpy.data.lights.new("Panel Lamp", "AREA")
@@ -156,8 +155,12 @@ def test_an_area_lamp_lights_from_its_front_only():
         got = measures(harness.corner_colors(room.data, "Radiosity"), ceiling, above)
         print("area lamp, %s: ceiling mean %.4f (Cycles %.4f), over the lamp %.4f (Cycles %.4f)"
               % (method, got[0], truth[0], got[2], truth[2]), flush=True)
-        assert got[2] <= truth[2], (method, got[2], truth[2])
-        assert abs(got[0] / truth[0] - 1) < 0.08, (method, got[0], truth[0])
+        assert got[2] <= truth[2] * 1.1, (method, got[2], truth[2])
+        if method == "GAUSS_SEIDEL":
+            assert abs(got[2] / truth[2] - 1) < 0.1, (method, got[2], truth[2])
+            assert abs(got[0] / truth[0] - 1) < 0.03, (method, got[0], truth[0])
+        else:
+            assert abs(got[0] / truth[0] - 1) < 0.08, (method, got[0], truth[0])
 
 
 harness.run(test_back_side_lights_the_ceiling_as_in_cycles, test_power_counts_both_sides, test_copies_show_the_front,

@@ -143,6 +143,30 @@ TEST(TwoSided, FrontOnlyEmittersHaveNoBackSide) {
     EXPECT_EQ(front_mean(h.output, h.output_radiance, 1), 0.0);
 }
 
+TEST(TwoSided, FrontOnlyEmittersBlockNoLight) {
+    // As Cycles' lamps: a front-only emitter (a lamp) between the receiver and an emitter, facing
+    // away from the receiver, leaves the receiver's light as it is without it, in the solve and at
+    // the gathered corners; turned towards the receiver it adds its own light.
+    const Rgb rho(kRho);
+    test::SceneArrays without;
+    without.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho);                     // receiver, +z
+    without.add_quad({0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}, Rgb(0.0), Rgb(kEmitted), 1);  // emitter, -z
+    test::SceneArrays with = without;
+    with.add_quad({0.25f, 0.25f, 1}, {0.75f, 0.25f, 1}, {0.75f, 0.75f, 1}, {0.25f, 0.75f, 1}, Rgb(0.0), Rgb(5.0), 2);
+    std::vector<uint8_t> front_only{0, 0, 1};
+    SceneInput input = with.input();
+    input.front_only = front_only.data();
+    BakeSettings settings = uniform(Method::GaussSeidel);
+    settings.element_size = 0.25f;
+    settings.final_gather.enabled = true;
+    const BakeResult a = bake(without.input(), settings), b = bake(input, settings);
+    EXPECT_EQ(b.direct_emitters, 4u);  // the lamp's elements, lit directly though larger than the bound
+    for (std::size_t c = 0; c < 4; ++c)
+        EXPECT_NEAR(b.colors.input_corner[c].g / a.colors.input_corner[c].g, 1.0, 1e-3) << c;
+    EXPECT_NEAR(front_mean(b.build.elements, b.solve.radiance, 0) / front_mean(a.build.elements, a.solve.radiance, 0),
+                1.0, 1e-3);
+}
+
 TEST(TwoSided, BackSideLightsWhatItFacesInTheHierarchicalBake) {
     const test::SceneArrays scene = emitter_back_over_receiver(0.0);
     const double expected = kRho * kFactor * kEmitted;

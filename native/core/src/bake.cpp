@@ -61,11 +61,13 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     }
     result.seconds_world = seconds_since(start);
 
-    // Small emitters light every element directly; the solve carries only the light reflected
-    // after that, so their own emission leaves it until the solve is done.
+    // Small emitters, and lamps, which hemi-cubes do not see, light every element directly; the
+    // solve carries only the light reflected after that, so their own emission leaves it until the
+    // solve is done.
     std::vector<int32_t> small;
     for (std::size_t e = 0; e < elements.size(); ++e)
-        if (elements.area[e] < settings.direct_emitter_area && std::max({emitted[e].r, emitted[e].g, emitted[e].b}) > 0.0)
+        if ((elements.area[e] < settings.direct_emitter_area || !elements.blocks(e)) &&
+            std::max({emitted[e].r, emitted[e].g, emitted[e].b}) > 0.0)
             small.push_back(int32_t(e));
     std::vector<Rgb> small_light;
     if (!small.empty()) {

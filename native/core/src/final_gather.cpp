@@ -270,7 +270,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         high = glm::max(high, v);
     }
     const float scene_size = std::max(glm::length(high - low), 1e-6f);
-    const hr::Visibility visibility(elements.vertices, elements.corners, scene_size);
+    const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
     std::vector<Emitter> emitters;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;

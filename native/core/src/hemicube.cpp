@@ -129,7 +129,7 @@ void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const 
 
     for (std::size_t i = 0; i < elements.size(); ++i) {
         const auto e = static_cast<int32_t>(i);
-        if (e == exclude) continue;
+        if (e == exclude || !elements.blocks(i)) continue;  // lamps are seen by their direct light
         const auto& c = elements.corners[i];
         const bool triangle = c[3] < 0;
         const uint16_t common = code[c[0]] & code[c[1]] & code[c[2]] & (triangle ? 0xffff : code[c[3]]);

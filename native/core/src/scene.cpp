@@ -432,6 +432,10 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         cut = cut_end;
     }
     add_back_sides(out, in, back_sides);
+    if (in.front_only != nullptr) {
+        out.lamp.assign(out.size(), 0);
+        for (std::size_t e = 0; e < out.size(); ++e) out.lamp[e] = emits_front_only(in, std::size_t(out.polygon[e]));
+    }
     return result;
 }
 

@@ -10,6 +10,13 @@
 
 namespace radiosity::detail {
 
+std::vector<std::array<int32_t, 4>> blocking_corners(const Elements& elements) {
+    std::vector<std::array<int32_t, 4>> corners = elements.corners;
+    for (std::size_t e = 0; e < corners.size(); ++e)
+        if (!elements.blocks(e)) corners[e] = {corners[e][0], corners[e][0], corners[e][0], -1};
+    return corners;
+}
+
 bool unhidden(const hr::Visibility& visibility, const Elements& elements, const Vec3& from, const Vec3& to,
               const Vec3& to_normal, float scene_size) {
     const Vec3 d = to - from;

@@ -6,7 +6,14 @@
 #include "hr_visibility.h"
 #include "radiosity/scene.h"
 
+#include <array>
+#include <vector>
+
 namespace radiosity::detail {
+
+/// The elements' corners for a hr::Visibility, lamps' collapsed to a point: rays pass through lamps
+/// (Elements::lamp), and element indices stay those of `elements`.
+std::vector<std::array<int32_t, 4>> blocking_corners(const Elements& elements);
 
 /// Whether nothing hides point `to` (on a surface of normal `to_normal`) from `from`. Hits in the
 /// plane through `to` do not count: a ray that grazes that plane (from a corner to the wall beside

@@ -47,7 +47,7 @@ std::vector<Rgb> small_emitter_light(const Elements& elements, const std::vector
     }
     const float scene_size = std::max(glm::length(high - low), 1e-6f);
     const float lift = 1e-5f * scene_size;  // rays leave and reach a hair off both surfaces
-    const hr::Visibility visibility(elements.vertices, elements.corners, scene_size);
+    const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
     std::vector<float> radius(elements.size());
     for (std::size_t e = 0; e < elements.size(); ++e) radius[e] = circumradius(elements, e);
 

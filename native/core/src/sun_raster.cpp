@@ -105,6 +105,7 @@ void add_sun_light(const Elements& elements, const SunLight& sun, int resolution
     for (std::size_t e = 0; e < elements.size(); ++e) {
         // An emitter's two sides cover the same cells at the same depth: the one facing the sun draws.
         if (elements.has_twin(e) && !(-glm::dot(elements.normal[e], frame[2]) > 0.0f)) continue;
+        if (!elements.blocks(e)) continue;  // a lamp casts no shadow
         const auto& c = elements.corners[e];
         grid.triangle(p[c[0]], p[c[1]], p[c[2]], int32_t(e));
         if (c[3] >= 0) grid.triangle(p[c[0]], p[c[2]], p[c[3]], int32_t(e));

@@ -4,6 +4,7 @@
 #include "world_light.h"
 
 #include "parallel_rows.h"
+#include "shadow_ray.h"
 #include "stratified.h"
 
 #include <glm/common.hpp>
@@ -218,7 +219,7 @@ std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& wo
     const detail::WorldSampler sampler(world);
     if (sampler.empty() || elements.size() == 0) return irradiance;
     const float scene_size = scene_size_of(elements.vertices);
-    const hr::Visibility visibility(elements.vertices, elements.corners, scene_size);
+    const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements), scene_size);
     const float lift = 1e-5f * scene_size;
     detail::parallel_rows("world", elements.size(), 8, 0, progress, [&](std::size_t e) {
         if (!(std::max({elements.reflectance[e].r, elements.reflectance[e].g, elements.reflectance[e].b}) > 0.0))

@@ -57,6 +57,11 @@ struct Elements {
     std::vector<int32_t> corner_vertex;
 
     std::size_t size() const { return centre.size(); }
+    /// Per element: 1 for a lamp's (an emitting face marked front only, SceneInput::front_only):
+    /// as in Cycles it emits but blocks no light, so hemi-cubes and rays pass through it and its
+    /// light reaches the other elements directly (small_emitters.h). Empty: no lamps.
+    std::vector<uint8_t> lamp;
+    bool blocks(std::size_t e) const { return lamp.empty() || !lamp[e]; }
     bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
     /// Whether element e is one of a front and back pair (see `side`).
     bool has_twin(std::size_t e) const { return !side.empty() && side[e] != kOneSided; }
