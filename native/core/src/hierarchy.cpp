@@ -74,6 +74,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };
     auto start = Clock::now();
     result.build = build_elements(input, 0.0f, settings.limits);
+    // The hierarchy's visibility is its own (hr_visibility): lamps' quads block light there.
+    result.build.elements.lamp.clear();
     // The world's first reflection per patch (its mean over the patch) is emitted light to the
     // solve, as bake() counts it; the output shows it as it is at each corner instead.
     std::vector<Rgb> world_light;

@@ -29,6 +29,9 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
 
     start = Clock::now();
     bake.build = build_elements(input, settings.element_size);
+    // The zonal exchange has no direct path for lamps (small_emitters.h): their quads stay in the
+    // factors, lit and blocking like any emitter (front-only still).
+    bake.build.elements.lamp.clear();
     const Elements& elements = bake.build.elements;
     bake.seconds_elements = seconds_since(start);
 
