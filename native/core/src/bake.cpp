@@ -67,7 +67,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     std::vector<int32_t> small;
     for (std::size_t e = 0; e < elements.size(); ++e)
         if ((elements.area[e] < settings.direct_emitter_area || !elements.blocks(e)) &&
-            std::max({emitted[e].r, emitted[e].g, emitted[e].b}) > 0.0)
+            max_channel(emitted[e]) > 0.0)
             small.push_back(int32_t(e));
     std::vector<Rgb> small_light;
     if (!small.empty()) {

@@ -22,9 +22,6 @@
 namespace radiosity::detail {
 namespace {
 
-double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
-
-int corner_count(const Elements& elements, std::size_t e) { return elements.is_triangle(e) ? 3 : 4; }
 
 /// An element that emits: its corners and what direct light needs of it.
 struct Emitter {
@@ -230,7 +227,7 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
     std::vector<int32_t> first_element(places, -1);
     std::vector<uint8_t> seam_place(places, 0);
     for (std::size_t e = 0; e < elements.size(); ++e)
-        for (int k = 0; k < corner_count(elements, e); ++k) {
+        for (int k = 0; k < elements.corner_count(e); ++k) {
             const std::size_t p = std::size_t(place[elements.corners[e][k]]);
             if (first_element[p] < 0) first_element[p] = int32_t(e);
             else if (glm::dot(elements.normal[e], elements.normal[std::size_t(first_element[p])]) < 0.99f) seam_place[p] = 1;
@@ -256,7 +253,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // corners (the output) and those on seams (read by the output's rays).
     std::vector<int32_t> element_at(elements.vertices.size(), -1);
     for (std::size_t e = elements.size(); e-- > 0;)
-        for (int k = 0; k < corner_count(elements, e); ++k) element_at[elements.corners[e][k]] = int32_t(e);
+        for (int k = 0; k < elements.corner_count(e); ++k) element_at[elements.corners[e][k]] = int32_t(e);
     std::vector<uint8_t> is_output(elements.vertices.size(), 0);
     for (const int32_t v : elements.corner_vertex)
         if (v >= 0 && element_at[v] >= 0) is_output[v] = 1;
@@ -274,7 +271,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     std::vector<Emitter> emitters;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;
-        Emitter source{int32_t(e), {}, corner_count(elements, e), glm::dvec3(elements.normal[e]), emitted[e]};
+        Emitter source{int32_t(e), {}, elements.corner_count(e), glm::dvec3(elements.normal[e]), emitted[e]};
         for (int k = 0; k < source.count; ++k) source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
         emitters.push_back(source);
     }
@@ -334,7 +331,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         for (std::size_t i = 0; i < points.size(); ++i)
             if (done[i]) gathered_index[points[i]] = int32_t(i);
         for (std::size_t e = 0; e < elements.size(); ++e)
-            for (int k = 0; k < corner_count(elements, e); ++k) {
+            for (int k = 0; k < elements.corner_count(e); ++k) {
                 const int32_t i = gathered_index[elements.corners[e][k]];
                 if (i >= 0) field[4 * e + k] = value[std::size_t(i)];
             }
@@ -351,7 +348,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     std::vector<Rgb> slot_value(4 * elements.size(), Rgb(0.0)), slot_light(4 * elements.size(), Rgb(0.0));
     std::vector<uint8_t> known(4 * elements.size(), 0);
     for (std::size_t e = 0; e < elements.size(); ++e)
-        for (int k = 0; k < corner_count(elements, e); ++k) {
+        for (int k = 0; k < elements.corner_count(e); ++k) {
             const int32_t i = output_index[elements.corners[e][k]];
             if (i < 0 || !done[std::size_t(i)]) continue;
             slot_value[4 * e + k] = value[std::size_t(i)];

@@ -153,9 +153,6 @@ inline Emitter element_emitter(const Node& n) {
     return e;
 }
 
-/// The largest of the three channels.
-inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
-
 /// Child k of a node with children.
 inline int32_t child(const Node& n, int k) {
     return n.kind == Kind::Cluster && k == 1 ? n.second_child : n.first_child + k;

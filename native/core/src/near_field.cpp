@@ -26,13 +26,6 @@ int element_corners(const Elements& e, int32_t i, DVec3* out) {
     return count;
 }
 
-double circumradius(const Elements& e, int32_t i) {
-    DVec3 p[4];
-    const int count = element_corners(e, i, p);
-    double r = 0.0;
-    for (int k = 0; k < count; ++k) r = std::max(r, glm::length(p[k] - DVec3(e.centre[i])));
-    return r;
-}
 
 /// Gauss-Legendre nodes and weights on [0, 1], s = 1..4 (beyond that composite rules: see sub_points).
 struct GaussRule {
@@ -85,6 +78,14 @@ int clip_to_hemisphere(const DVec3& x, const DVec3& n, const DVec3* in, int coun
 }
 
 }  // namespace
+
+double circumradius(const Elements& e, int32_t i) {
+    DVec3 p[4];
+    const int count = element_corners(e, i, p);
+    double r = 0.0;
+    for (int k = 0; k < count; ++k) r = std::max(r, glm::length(p[k] - DVec3(e.centre[i])));
+    return r;
+}
 
 double point_to_polygon(const DVec3& x, const DVec3& n, const DVec3* polygon, int count, const DVec3& polygon_normal) {
     if (!(glm::dot(polygon_normal, x - polygon[0]) > 0.0)) return 0.0;  // behind or in its plane: sees no front

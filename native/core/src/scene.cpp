@@ -27,8 +27,6 @@ namespace {
 
 using detail::DVec3;
 
-double max_component(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
-
 bool emits_front_only(const SceneInput& in, std::size_t f) { return in.front_only != nullptr && in.front_only[f] != 0; }
 
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
@@ -360,7 +358,7 @@ void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides)
     const std::size_t fronts = out.size();
     out.side.assign(fronts, Elements::kOneSided);
     for (std::size_t e = 0; e < fronts; ++e) {
-        if (!(max_component(out.emission[e]) > 0.0) || emits_front_only(in, std::size_t(out.polygon[e]))) continue;
+        if (!(max_channel(out.emission[e]) > 0.0) || emits_front_only(in, std::size_t(out.polygon[e]))) continue;
         out.side[e] = Elements::kFront;
         const std::array<int32_t, 4> c = out.corners[e];
         const bool triangle = c[3] < 0;
@@ -412,7 +410,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const int32_t first = in.face_offsets[f];
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
-        const bool emits_behind = max_component(emitted) > 0.0 && !emits_front_only(in, f);
+        const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
         const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
             const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);

@@ -19,18 +19,9 @@
 namespace radiosity::detail {
 namespace {
 
-int corner_count(const Elements& elements, std::size_t e) { return elements.is_triangle(e) ? 3 : 4; }
-
-float circumradius(const Elements& elements, std::size_t e) {
-    float r = 0.0f;
-    for (int k = 0; k < corner_count(elements, e); ++k)
-        r = std::max(r, glm::length(elements.vertices[elements.corners[e][k]] - elements.centre[e]));
-    return r;
-}
-
 std::array<Vec3, 4> corners_of(const Elements& elements, std::size_t e) {
     std::array<Vec3, 4> c{};
-    for (int k = 0; k < corner_count(elements, e); ++k) c[k] = elements.vertices[elements.corners[e][k]];
+    for (int k = 0; k < elements.corner_count(e); ++k) c[k] = elements.vertices[elements.corners[e][k]];
     return c;
 }
 
@@ -49,7 +40,7 @@ std::vector<Rgb> small_emitter_light(const Elements& elements, const std::vector
     const float lift = 1e-5f * scene_size;  // rays leave and reach a hair off both surfaces
     const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
     std::vector<float> radius(elements.size());
-    for (std::size_t e = 0; e < elements.size(); ++e) radius[e] = circumradius(elements, e);
+    for (std::size_t e = 0; e < elements.size(); ++e) radius[e] = float(circumradius(elements, int32_t(e)));
 
     parallel_rows("small emitters", elements.size(), 16, elements.size(), progress, [&](std::size_t i) {
         const Vec3 ci = elements.centre[i], ni = elements.normal[i];
@@ -72,8 +63,8 @@ std::vector<Rgb> small_emitter_light(const Elements& elements, const std::vector
             const int grid = distance > 4.0f * reach ? 1 : distance > 1.5f * reach ? 2 : 4;
             const uint32_t seed = mix_seed(uint32_t(i), uint32_t(j));
             const std::array<Vec3, 4> source = corners_of(elements, s);
-            stratified_points(source.data(), corner_count(elements, s), grid, seed, from.data());
-            stratified_points(receiver.data(), corner_count(elements, i), grid, mix_seed(seed, 1U), to.data());
+            stratified_points(source.data(), elements.corner_count(s), grid, seed, from.data());
+            stratified_points(receiver.data(), elements.corner_count(i), grid, mix_seed(seed, 1U), to.data());
             double visible = 0.0, total = 0.0;
             for (int k = 0; k < grid * grid; ++k) {
                 // Receiver points paired with emitter points in another order, so that rows and

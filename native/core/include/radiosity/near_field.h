@@ -34,6 +34,9 @@ struct NearFieldSettings {
 double point_to_polygon(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3* polygon, int count,
                         const glm::dvec3& polygon_normal);
 
+/// The largest distance from element i's centre to its corners.
+double circumradius(const Elements& elements, int32_t i);
+
 /// Unoccluded A_i F_ij (= A_j F_ji): the point-to-polygon factor integrated over s x s sub-points
 /// of the smaller element towards the larger one. Symmetric in i and j, bit for bit.
 double area_flux(const Elements& elements, int32_t i, int32_t j, int sub_points);

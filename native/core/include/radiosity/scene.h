@@ -62,6 +62,7 @@ struct Elements {
     /// light reaches the other elements directly (small_emitters.h). Empty: no lamps.
     std::vector<uint8_t> lamp;
     bool blocks(std::size_t e) const { return lamp.empty() || !lamp[e]; }
+    int corner_count(std::size_t e) const { return is_triangle(e) ? 3 : 4; }
     bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
     /// Whether element e is one of a front and back pair (see `side`).
     bool has_twin(std::size_t e) const { return !side.empty() && side[e] != kOneSided; }

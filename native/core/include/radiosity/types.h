@@ -9,12 +9,16 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <algorithm>
 #include <utility>
 
 namespace radiosity {
 
 using Vec3 = glm::vec3;   ///< positions and directions, metres (float: what Blender stores)
 using Rgb = glm::dvec3;   ///< radiance or reflectance per RGB channel (double: solver precision)
+
+/// The largest of the three channels.
+inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
 /// What a long-running phase reports. `radiance` is the current per-element solution when the
 /// phase has one (solvers), null otherwise; it is only valid during the callback.
