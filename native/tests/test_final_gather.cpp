@@ -48,6 +48,16 @@ void add_emitter(test::SceneArrays& s, double h, const Rgb& Le) {
     s.add_quad({-0.5f, -0.5f, z}, {-0.5f, 0.5f, z}, {0.5f, 0.5f, z}, {0.5f, -0.5f, z}, Rgb(0.0), Le, 1);
 }
 
+/// Bakes `s` at 0.5 m elements under a point lamp of intensity I at height h over the origin.
+BakeResult bake_under_lamp(const test::SceneArrays& s, const Rgb& I, double h, bool gather) {
+    BakeSettings settings = gather_settings(0.5f, gather);
+    PointLight lamp;
+    lamp.position = Vec3(0.0f, 0.0f, float(h));
+    lamp.intensity = I;
+    settings.lights.points.push_back(lamp);
+    return bake(s.input(), settings);
+}
+
 /// Largest |L / expected - 1| over the channels of the input corners `corners`.
 double worst_relative_error(const BakeResult& r, const std::vector<std::size_t>& corners, const Rgb& expected) {
     double worst = 0.0;
@@ -163,12 +173,7 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
     test::SceneArrays s;
     add_floor(s, rho);
     for (const bool gather : {false, true}) {
-        BakeSettings settings = gather_settings(0.5f, gather);
-        PointLight lamp;
-        lamp.position = Vec3(0.0f, 0.0f, float(h));
-        lamp.intensity = I;
-        settings.lights.points.push_back(lamp);
-        const BakeResult r = bake(s.input(), settings);
+        const BakeResult r = bake_under_lamp(s, I, h, gather);
         const Rgb expected = rho * I / (M_PI * h * h);
         const double worst = worst_relative_error(r, corners_at(s, Vec3(0.0f)), expected);
         std::printf("gather %d: floor under the lamp, worst relative error %.2e\n", int(gather), worst);
@@ -186,12 +191,7 @@ TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
     test::SceneArrays s;
     add_floor(s, rho);
     for (const bool gather : {false, true}) {
-        BakeSettings settings = gather_settings(0.5f, gather);
-        PointLight lamp;
-        lamp.position = Vec3(0.0f, 0.0f, float(h));
-        lamp.intensity = I;
-        settings.lights.points.push_back(lamp);
-        const BakeResult r = bake(s.input(), settings);
+        const BakeResult r = bake_under_lamp(s, I, h, gather);
         ASSERT_EQ(r.light_colors.input_corner.size(), r.colors.input_corner.size());
         for (std::size_t c = 0; c < r.colors.input_corner.size(); ++c)
             for (int k = 0; k < 3; ++k)
