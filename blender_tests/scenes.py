@@ -13,6 +13,11 @@ GREEN = (0.14, 0.45, 0.091)
 # Opening of the Cornell box's ceiling light, in cells of the 8 x 8 ceiling grid.
 CORNELL_CELLS = 8
 CORNELL_LIGHT_CELLS = (3, 5)
+ROOM_SIDES = [  # (origin, u, v) of a closed 2 m room, u x v pointing inwards: floor, ceiling, walls
+    ((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
+    ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
+    ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),
+]
 
 
 def clear_scene():
@@ -203,6 +208,17 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
         lamp_object.location = (0.7, 0.7, 0.8)
         bpy.context.scene.collection.objects.link(lamp_object)
     return box
+
+
+def room_with_panel(albedo=0.5):
+    """A closed 2 m room (ROOM_SIDES, 4 x 4 quads a side) of the given albedo, lit by a 50 cm
+    emitting panel facing down 10 cm under the ceiling."""
+    clear_scene()
+    walls = diffuse("Walls", (albedo, albedo, albedo))
+    room = mesh_object("Room", [grid(o, u, v, 4, 4) + (0,) for o, u, v in ROOM_SIDES], [walls])
+    mesh_object("Panel", [grid((0.75, 0.75, 1.9), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
+                [emission("Panel", (1.0, 1.0, 1.0), 5.0)])
+    return room
 
 
 def small_lamp_over_floor(side, height=1.5, rho=0.5, radiance=1000.0):

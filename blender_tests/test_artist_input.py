@@ -201,10 +201,7 @@ def room_lit_by_area_lamp(shape, size):
     """The closed 2 m room of albedo 0.7, lit by a 100 W area lamp of `shape` facing down 10 cm
     under the ceiling."""
     scenes.clear_scene()
-    sides = [((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
-             ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
-             ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0))]
-    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in sides],
+    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in scenes.ROOM_SIDES],
                               [scenes.diffuse("Walls", (0.7, 0.7, 0.7))])
     light = bpy.data.lights.new("Lamp", "AREA")
     light.shape, light.size, light.energy = shape, size, 100.0

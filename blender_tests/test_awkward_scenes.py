@@ -19,23 +19,6 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
 
-ROOM_SIDES = [  # (origin, u, v) of a closed 2 m room, u x v pointing inwards
-    ((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
-    ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
-    ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),
-]
-
-
-def room_with_panel(albedo=0.5):
-    """A closed 2 m room of the given albedo, lit by a 50 cm emitting panel facing down 10 cm under
-    the ceiling."""
-    scenes.clear_scene()
-    walls = scenes.diffuse("Walls", (albedo, albedo, albedo))
-    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in ROOM_SIDES], [walls])
-    scenes.mesh_object("Panel", [scenes.grid((0.75, 0.75, 1.9), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
-                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 5.0)])
-    return room
-
 
 def set_viewport_shading(shading_type):
     for screen in bpy.data.screens:
@@ -48,7 +31,7 @@ def test_the_real_materials_bake_whatever_the_viewport_previews():
     """A red block in the room, baked once in Solid shading, then again with the baked light
     previewed (Preview Radiosity: an emission material on every baked object) and the viewport in
     Material Preview and Rendered: the block stays red and every colour equals the Solid bake."""
-    room = room_with_panel()
+    room = scenes.room_with_panel()
     block = scenes.mesh_object("Block", scenes.block((0.6, 0.6), (1.2, 1.0), 0.5, 0.25),
                                [scenes.diffuse("Red", scenes.RED)])
     settings = bpy.context.scene.radiosity
@@ -90,7 +73,7 @@ def test_a_room_with_outward_normals_is_named():
     light a face's front); the bake names the room and how many of its faces turn away from the
     light. A cube standing on the floor of a well-made room, whose bottom face is black too, is not
     named: nothing lights its back."""
-    room = room_with_panel()
+    room = scenes.room_with_panel()
     room.data.flip_normals()
     summary = addon.bake(bpy.context.scene, quality="DRAFT")
     assert harness.corner_colors(room.data, "Radiosity").max() == 0.0
@@ -110,7 +93,7 @@ def test_a_room_with_outward_normals_is_named():
 def test_a_stray_triangle_far_away_costs_nothing():
     """One triangle 1e6 m away (1 m across), or 1e30 m away (1e25 m across): the room bakes with the
     settings, colours and about the time it has alone, and the triangle is named as left out."""
-    room = room_with_panel()
+    room = scenes.room_with_panel()
     start = time.perf_counter()
     alone = addon.bake(bpy.context.scene, quality="DRAFT")
     seconds_alone = time.perf_counter() - start
@@ -160,7 +143,7 @@ def test_text_curves_and_metaballs_bake_once_and_quickly():
     depsgraph lists that mesh as an instance besides the object itself), so the hierarchical bake
     meets no doubled, coincident surfaces; with them it ran over 5 minutes without converging.
     The truth: the same scene with the three converted to meshes."""
-    room_with_panel()
+    scenes.room_with_panel()
     text_curve_and_metaball()
     keywords = dict(method="HIERARCHICAL", element_size=0.064, tolerance=1e-4, refine_tolerance=0.02)
     start = time.perf_counter()
@@ -187,7 +170,7 @@ def test_an_array_modifier_and_a_missing_volume_file_are_named():
     """An Array modifier on target Original: the warning names the modifier and says that Subdivided
     Copies bakes the object. A Volume object whose .vdb file is missing: named with its file, with
     and without a volume material."""
-    room = room_with_panel()
+    room = scenes.room_with_panel()
     shelf = scenes.mesh_object("Shelf", [scenes.grid((0.2, 0.2, 0.6), (0.3, 0, 0), (0, 0.3, 0), 1, 1) + (0,)],
                                [scenes.diffuse("Shelf", (0.5, 0.5, 0.5))])
     shelf.modifiers.new("Shelves", "ARRAY").relative_offset_displace = (0.0, 0.0, 1.0)
@@ -220,7 +203,7 @@ def test_an_array_modifier_and_a_missing_volume_file_are_named():
 def test_the_batch_command_reports_every_phase():
     """The batch command prints a line as each phase starts, the add-on's own (export, settings,
     write-back) and the core's (form factors, solve, final gather), in the order they run."""
-    room_with_panel()
+    scenes.room_with_panel()
     source = os.path.join(args.work, "room.blend")
     bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
     run = subprocess.run(harness.batch_command(source, "--quality", "DRAFT",

@@ -18,30 +18,15 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
 
-ROOM_SIDES = [  # (origin, u, v) of a closed 2 m room, u x v pointing inwards
-    ((0, 0, 0), (2, 0, 0), (0, 2, 0)), ((0, 0, 2), (0, 2, 0), (2, 0, 0)),
-    ((0, 0, 0), (0, 0, 2), (2, 0, 0)), ((0, 2, 0), (2, 0, 0), (0, 0, 2)),
-    ((0, 0, 0), (0, 2, 0), (0, 0, 2)), ((2, 0, 0), (0, 0, 2), (0, 2, 0)),
-]
-
-
-def room_with_panel(albedo):
-    """A closed 2 m room of the given albedo, lit by a 50 cm emitting panel facing down 10 cm under
-    the ceiling."""
-    scenes.clear_scene()
-    walls = scenes.diffuse("Walls", (albedo, albedo, albedo))
-    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (0,) for o, u, v in ROOM_SIDES], [walls])
-    scenes.mesh_object("Panel", [scenes.grid((0.75, 0.75, 1.9), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
-                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 5.0)])
-    return room
-
 
 def room_that_absorbs_nothing():
-    """The same room with albedo 1 everywhere, lit by its ceiling, which also reflects all light."""
+    """scenes.room_with_panel's room with albedo 1 everywhere, lit by its ceiling, which also reflects
+    all light."""
     scenes.clear_scene()
     walls = scenes.diffuse("Walls", (1.0, 1.0, 1.0))
     ceiling = scenes.furnace_material(1.0, 1.0)
-    scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (int(i == 1),) for i, (o, u, v) in enumerate(ROOM_SIDES)],
+    sides = enumerate(scenes.ROOM_SIDES)
+    scenes.mesh_object("Room", [scenes.grid(o, u, v, 4, 4) + (int(i == 1),) for i, (o, u, v) in sides],
                        [walls, ceiling])
 
 
@@ -85,12 +70,12 @@ def test_a_diverging_solve_is_a_report_and_changes_nothing():
 def test_an_unwritable_media_folder_fails_before_the_solve():
     """Fog whose grids would go into a folder that cannot be made (its parent is a file): the bake
     says so before any form factor is computed, and the file is as it was."""
-    room_with_panel(0.5)
+    scenes.room_with_panel(0.5)
     fog = scenes.fog_material()
     scenes.mesh_object("Fog", [scenes.grid(o, u, v, 1, 1) + (0,) for o, u, v in
                                [((0.5 + 0.5 * o[0], 0.5 + 0.5 * o[1], 0.5 + 0.5 * o[2]),
                                  tuple(0.5 * c for c in u), tuple(0.5 * c for c in v))
-                                for o, u, v in ROOM_SIDES]], [fog])
+                                for o, u, v in scenes.ROOM_SIDES]], [fog])
     blocker = os.path.join(args.work, "a-file")
     with open(blocker, "w") as handle:
         handle.write("not a folder")
@@ -112,7 +97,7 @@ def test_an_unwritable_media_folder_fails_before_the_solve():
 def test_a_non_finite_vertex_at_the_default_settings_is_skipped_and_named():
     """A NaN vertex must not decide the automatic element size: its faces are skipped with a
     warning naming the object, at the default quality as with an explicit element size."""
-    room_with_panel(0.5)
+    scenes.room_with_panel(0.5)
     broken = scenes.mesh_object("Broken", [scenes.grid((0.5, 0.5, 0.5), (0.3, 0, 0), (0, 0.3, 0), 1, 1) + (0,)])
     broken.data.vertices[0].co = (math.nan, 0.5, 0.5)
     start = time.perf_counter()

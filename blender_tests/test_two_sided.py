@@ -31,13 +31,8 @@ def room_with_panel():
     quads facing down, an Emission shader of strength RADIANCE: it emits and reflects nothing).
     The ceiling's grid has a vertex over the panel's centre and along its outline."""
     scenes.clear_scene()
-    s = ROOM
-    sides = [  # (origin, u, v) with u x v pointing into the room
-        ((0, 0, 0), (s, 0, 0), (0, s, 0)), ((0, 0, s), (0, s, 0), (s, 0, 0)),
-        ((0, 0, 0), (0, 0, s), (s, 0, 0)), ((0, s, 0), (s, 0, 0), (0, 0, s)),
-        ((0, 0, 0), (0, s, 0), (0, 0, s)), ((s, 0, 0), (0, 0, s), (0, s, 0)),
-    ]
-    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, CELLS, CELLS) + (0,) for o, u, v in sides],
+    s = ROOM  # scenes.ROOM_SIDES' size
+    room = scenes.mesh_object("Room", [scenes.grid(o, u, v, CELLS, CELLS) + (0,) for o, u, v in scenes.ROOM_SIDES],
                               [scenes.diffuse("White", (ALBEDO, ALBEDO, ALBEDO))])
     low, z = (s - PANEL) / 2, s - GAP
     scenes.mesh_object("Panel", [scenes.grid((low, low, z), (0, PANEL, 0), (PANEL, 0, 0), 2, 2) + (0,)],
