@@ -63,6 +63,17 @@ def batch_command(blend_file, *options):
             "--python-expr", "import bake_radiosity.cli as c; c.main()", "--", *options]
 
 
+class Stopwatch:
+    """CPU seconds of this process (every thread) and wall seconds of a with-block."""
+
+    def __enter__(self):
+        self.cpu, self.wall = time.process_time(), time.perf_counter()
+        return self
+
+    def __exit__(self, *_):
+        self.cpu, self.wall = time.process_time() - self.cpu, time.perf_counter() - self.wall
+
+
 def use_unbiased_cycles(samples, seed, bounces=128, volume_bounces=0, transparent_bounces=0):
     """Cycles as a reference: CPU, a fixed sample count and seed, no adaptive sampling, no
     denoising, no clamping, diffuse (and volume) bounces raised, glossy and transmission off.

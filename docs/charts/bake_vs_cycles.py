@@ -105,17 +105,6 @@ def setup_cycles(samples, seed):
     scene.render.bake.target = "VERTEX_COLORS"
 
 
-class Stopwatch:
-    """CPU seconds of this process (every thread) and wall-clock seconds of a with-block."""
-
-    def __enter__(self):
-        self.cpu, self.wall = time.process_time(), time.perf_counter()
-        return self
-
-    def __exit__(self, *_):
-        self.cpu, self.wall = time.process_time() - self.cpu, time.perf_counter() - self.wall
-
-
 def cycles_bake(obj, samples, seed):
     """(corner colours, Stopwatch) of Cycles' Combined bake to a colour attribute."""
     setup_cycles(samples, seed)
@@ -128,14 +117,15 @@ def cycles_bake(obj, samples, seed):
         other.select_set(False)
     obj.select_set(True)
     bpy.context.view_layer.objects.active = obj
-    with Stopwatch() as seconds:
+    with harness.Stopwatch() as seconds:
         assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
     return corner_colors(obj.data, name), seconds
 
 
 def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
-    """(corner colours, Stopwatch, summary) of a whole add-on bake; method GAUSS_SEIDEL_PLAIN is
-    Gauss-Seidel without over-relaxation; near_field True or False overrides the presets' own."""
+    """(corner colours, Stopwatch, summary) of a whole add-on bake without the final gather (this
+    chart compares the solutions); method GAUSS_SEIDEL_PLAIN is Gauss-Seidel without
+    over-relaxation; near_field True or False overrides the presets' own."""
     if method is not None:
         settings["method"] = "GAUSS_SEIDEL" if method == "GAUSS_SEIDEL_PLAIN" else method
     auto_settings = sys.modules["bake_radiosity.auto_settings"]
@@ -143,8 +133,8 @@ def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     presets = auto_settings.PRESETS if near_field is None else {
         name: dataclasses.replace(preset, near_field=near_field) for name, preset in auto_settings.PRESETS.items()}
     with harness.patched_setting("AUTOMATIC_OVER_RELAXATION", omega), harness.patched_setting("PRESETS", presets), \
-            Stopwatch() as seconds:
-        summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", **settings)
+            harness.Stopwatch() as seconds:
+        summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", final_gather=False, **settings)
     return corner_colors(obj.data, "Radiosity"), seconds, summary
 
 

@@ -68,19 +68,8 @@ def arguments():
     return parser.parse_args(argv)
 
 
-class Stopwatch:
-    """CPU seconds of this process (every thread) and wall seconds of a with-block."""
-
-    def __enter__(self):
-        self.cpu, self.wall = time.process_time(), time.perf_counter()
-        return self
-
-    def __exit__(self, *_):
-        self.cpu, self.wall = time.process_time() - self.cpu, time.perf_counter() - self.wall
-
-
 def cycles_bake(obj, samples, seed):
-    with Stopwatch() as seconds:
+    with harness.Stopwatch() as seconds:
         colors = harness.cycles_corner_bake(obj, samples, seed)
     attributes = obj.data.color_attributes
     attributes.remove(attributes["Cycles %d" % seed])
@@ -97,7 +86,7 @@ def radiosity_bake(addon, obj, quality, final_gather, preset=None, gather_rays=N
     if gather_rays:
         gathered = dataclasses.replace(presets[quality].gathered, rays=gather_rays)
         presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
-    with harness.patched_setting("PRESETS", presets), Stopwatch() as seconds:
+    with harness.patched_setting("PRESETS", presets), harness.Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality,
                              final_gather=final_gather)
     return harness.corner_colors(obj.data, "Radiosity"), seconds, summary

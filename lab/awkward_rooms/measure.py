@@ -72,9 +72,9 @@ def main():
     halves = reference["halves"].mean(axis=2)  # grey per corner, per seed
     cycles = halves.mean(axis=0)
 
-    wall, cpu = time.perf_counter(), time.process_time()
-    summary = addon.bake(bpy.context.scene, quality=args.quality, final_gather=args.final_gather)
-    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    with harness.Stopwatch() as seconds:
+        summary = addon.bake(bpy.context.scene, quality=args.quality, final_gather=args.final_gather)
+    wall, cpu = seconds.wall, seconds.cpu
     baked = harness.corner_colors(room.data, "Radiosity").mean(axis=1)
 
     positions = harness.corner_positions(room.data)

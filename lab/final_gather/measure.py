@@ -15,7 +15,6 @@ import argparse
 import math
 import os
 import sys
-import time
 
 import bpy
 import numpy as np
@@ -92,9 +91,9 @@ def bake(quality, gather_rays):
         return k
     auto_settings.Choice.stability_keywords = keywords
     try:
-        cpu, wall = time.process_time(), time.perf_counter()
-        summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality)
-        cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+        with harness.Stopwatch() as seconds:
+            summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality)
+        cpu, wall = seconds.cpu, seconds.wall
     finally:
         auto_settings.Choice.stability_keywords = original
     colors = harness.corner_colors(mesh, "Radiosity")[keep]

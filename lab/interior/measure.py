@@ -13,7 +13,6 @@ own noise taken out in quadrature.
 import argparse
 import os
 import sys
-import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [here, os.path.join(here, "..", "..", "blender_tests")]
@@ -34,9 +33,10 @@ def luminance_per_vertex(mesh, corner_colors):
 
 
 def timed(function):
-    cpu, wall = time.process_time(), time.perf_counter()
-    result = function()
-    return result, time.process_time() - cpu, time.perf_counter() - wall
+    """(what `function` returns, its CPU seconds, its wall seconds)."""
+    with harness.Stopwatch() as seconds:
+        result = function()
+    return result, seconds.cpu, seconds.wall
 
 
 def deep_truth(obj, path, samples, seeds, target_noise):

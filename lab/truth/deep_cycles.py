@@ -24,7 +24,6 @@ import hashlib
 import math
 import os
 import sys
-import time
 
 import bpy
 import numpy as np
@@ -83,12 +82,11 @@ def vertex_luminance_of(obj, skip_material=None):
 
 
 def _seed_bake(obj, seed, samples):
-    cpu, wall = time.process_time(), time.perf_counter()
-    colors = harness.cycles_corner_bake(obj, samples, seed)
-    cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+    with harness.Stopwatch() as seconds:
+        colors = harness.cycles_corner_bake(obj, samples, seed)
     attributes = obj.data.color_attributes
     attributes.remove(attributes["Cycles %d" % seed])
-    return colors.astype(np.float32), cpu, wall
+    return colors.astype(np.float32), seconds.cpu, seconds.wall
 
 
 def deep_truth(obj, name, samples, target_noise, max_seconds, luminance, folder=None, log=print):
