@@ -31,7 +31,7 @@ step_bake_vs_cycles() {
     "$charts/bake_vs_cycles_ratios.txt"
 }
 
-# The race against Cycles (issue 20): Cycles' sample ladder and the presets with the final gather on
+# The race against Cycles: Cycles' sample ladder and the presets with the final gather on
 # and off, against a deep Cycles truth cached outside git ($BAKE_RADIOSITY_TRUTH or build/truth; made
 # when missing: 1,330 CPU s, 34 minutes on 2 busy cores), then error against element count. About
 # 7 minutes on 2 busy cores once the truth is cached.

@@ -1,4 +1,4 @@
-"""The race against Cycles (issue 20), in one Blender run: Cycles at a ladder of sample counts and
+"""The race against Cycles, in one Blender run: Cycles at a ladder of sample counts and
 the add-on's whole bakes at Draft, Medium and High with the final gather on and off, each timed,
 each judged against a deep Cycles truth of the same corners (lab/truth/deep_cycles.py, cached
 outside git and made when missing); then the error against the solution's element count (Medium's

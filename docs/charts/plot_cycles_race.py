@@ -5,7 +5,7 @@
 
 cycles_race.png: error against CPU seconds, log-log, over all vertices and over the vertices off
 seams and contact lines: Cycles' sample ladder (black), the presets with the final gather (filled
-stars) and without (hollow), other settings (diamonds, divisions/cells/rays), issue 20's targets
+stars) and without (hollow), other settings (diamonds, divisions/cells/rays), the accuracy targets
 (Medium 1.5%, High 0.75%) as grey lines. cycles_race_elements.png:
 error against the solution's element count at Medium's settings, with and without the gather,
 with Cycles' error at its sample counts for scale. Errors have the truth's noise taken out. The
@@ -119,7 +119,7 @@ def main(csv_path, race_png, elements_png, off_seams_txt=None):
     figure, axes = plt.subplots(1, 2, figsize=(15, 6.5))
     draw_race(axes[0], rows, "error_noise_out")
     draw_race(axes[1], rows, "error_elsewhere")
-    axes[0].set_title("Cornell box against a deep Cycles truth: all vertices (issue 20's measure)", fontsize=10)
+    axes[0].set_title("Cornell box against a deep Cycles truth: all vertices", fontsize=10)
     axes[1].set_title("the same bakes on the vertices off seams and contact lines (305 of 604)", fontsize=10)
     axes[0].legend(fontsize=7, loc="upper right")
     figure.tight_layout()

@@ -1,5 +1,5 @@
 """A deep Cycles truth: the mean of many independent Cycles bakes of a scene's corners, good enough
-to judge a bake at 0.5% (issue 20). Run inside Blender:
+to judge a bake at 0.5%. Run inside Blender:
 
     blender -b --factory-startup --python-exit-code 1 --python lab/truth/deep_cycles.py -- \\
         [--scene cornell|small-emitter|cluttered] [--samples 4096] [--target-noise 0.003] \\

@@ -1,4 +1,4 @@
-"""Issue 20's error measure: relative RMS luminance error per vertex against a deep Cycles truth.
+"""The accuracy targets' error measure: relative RMS luminance error per vertex against a deep Cycles truth.
 
 Corner colours are reduced to one luminance per vertex (the mean of the vertex's corners that are
 not on an emitter); vertices the truth sees below DARK_SHARE of the mean vertex are left out, so

@@ -485,8 +485,8 @@ TEST(Hierarchy, CancelStopsTheBakeInEveryPhase) {
 /// The inside of a 2 m room, rho 0.7, one quad per side (polygon 0 the floor, 1 the ceiling, 2
 /// to 5 the walls), a 50 cm square 1 cm under the ceiling emitting 10 (polygon 6; emitters are
 /// two-sided, so it emits up into the gap too), reflecting 0.7 too: nothing is black and nothing
-/// escapes, so every watt emitted is absorbed. `closed` false: the emitter is black (as in issue
-/// 22's scene).
+/// escapes, so every watt emitted is absorbed. `closed` false: the emitter is black (an Emission
+/// shader's).
 test::SceneArrays lit_room(bool closed = true) {
     test::SceneArrays s;
     const Rgb rho(0.7);

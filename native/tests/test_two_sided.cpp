@@ -265,9 +265,9 @@ TEST(TwoSided, ClosedRoomAbsorbsWhatBothSidesEmit) {
     EXPECT_NEAR(p.absorbed / p.emitted, 1.0, 0.01);
 }
 
-/// The issue's room: 2 m, walls of albedo 0.7 (one polygon each), a black 50 cm emitting square
+/// The awkward-scenes room: 2 m, walls of albedo 0.7 (one polygon each), a black 50 cm emitting square
 /// (radiance 10) hung 1 cm under the ceiling, its corner at (x0, x0).
-test::SceneArrays issue_room(float x0) {
+test::SceneArrays room_with_hung_panel(float x0) {
     test::SceneArrays s = test::closed_box(Vec3(2.0f), Rgb(0.7), Rgb(0.0));
     const float x1 = x0 + 0.5f, z = 1.99f;
     s.add_quad({x0, x0, z}, {x0, x1, z}, {x1, x1, z}, {x1, x0, z}, Rgb(0.0), Rgb(10.0), 1);  // normal -z
@@ -297,7 +297,7 @@ TEST(TwoSided, PanelCloseUnderTheCeilingLeaksNoLightPastItsOutline) {
     h.min_element_size = 0.125f;
     double on_grid[2] = {0.0, 0.0};
     for (const float x0 : {0.75f, 0.78f}) {
-        const test::SceneArrays room = issue_room(x0);
+        const test::SceneArrays room = room_with_hung_panel(x0);
         const BakeResult a = bake(room.input(), u);
         const HierarchyResult b = bake_hierarchical(room.input(), h);
         const double means[2] = {room_mean(a.build.elements, a.solve.radiance), room_mean(b.output, b.output_radiance)};
