@@ -62,8 +62,10 @@ public:
     /// `polygon_centre`); false when the point is buried. `place` seeds the rays: vertices at one
     /// place get the same directions, so coplanar faces around a vertex differ only where the
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
+    /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
+    /// same vertex picks the same point: the buried test does not read the solution).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, uint32_t place, Rgb& out,
-                     Rgb& light, float& seam_share) const {
+                     Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
@@ -91,7 +93,8 @@ public:
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share)) continue;  // buried: further in
             // The light arriving is gathered on black surfaces too: it is the light-only output.
-            light = direct(x, origin, n, seed) + indirect;
+            if (!direct_known) direct_light = direct(x, origin, n, seed);
+            light = direct_light + indirect;
             out = emitted_[e] + elements_.reflectance[e] * light;
             return true;
         }
@@ -174,7 +177,8 @@ private:
                 const double kernel = r2 > 0.0f ? double(std::max(0.0f, glm::dot(normal, d)) *
                                                          std::max(0.0f, -glm::dot(Vec3(source.normal), d))) / (r2 * r2)
                                                  : 0.0;
-                const bool seen_clear = unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
+                const bool seen_clear =
+                    unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
                 clear += seen_clear;
                 total += kernel;
                 if (seen_clear) visible += kernel;
@@ -230,7 +234,8 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
         for (int k = 0; k < elements.corner_count(e); ++k) {
             const std::size_t p = std::size_t(place[elements.corners[e][k]]);
             if (first_element[p] < 0) first_element[p] = int32_t(e);
-            else if (glm::dot(elements.normal[e], elements.normal[std::size_t(first_element[p])]) < 0.99f) seam_place[p] = 1;
+            else if (glm::dot(elements.normal[e], elements.normal[std::size_t(first_element[p])]) < 0.99f)
+                seam_place[p] = 1;
         }
     std::vector<uint8_t> seam(elements.vertices.size(), 0);
     for (std::size_t v = 0; v < seam.size(); ++v) seam[v] = seam_place[std::size_t(place[v])];
@@ -272,7 +277,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;
         Emitter source{int32_t(e), {}, elements.corner_count(e), glm::dvec3(elements.normal[e]), emitted[e]};
-        for (int k = 0; k < source.count; ++k) source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
+        for (int k = 0; k < source.count; ++k)
+            source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
         emitters.push_back(source);
     }
     const WorldSampler world_sampler(world);
@@ -302,20 +308,22 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // 0.70 CPU s; Medium 1.00%, 0.75%, 0.72%, 0.71%.
     std::vector<Rgb> field = colors.element_corner;
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
+    std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
     std::vector<uint8_t> done(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
     std::vector<std::size_t> todo(points.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
     const int passes = 3;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
-        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, visibility,
-                                scene_size);
+        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
+                                visibility, scene_size);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
             Rgb L, H;
             float share = 0.0f;
-            if (gatherer.radiance_at(points[i], e, polygon_centre(e), uint32_t(place[points[i]]), L, H, share) &&
+            if (gatherer.radiance_at(points[i], e, polygon_centre(e), uint32_t(place[points[i]]), L, H, share,
+                                     direct[i], pass > 0) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
