@@ -294,7 +294,7 @@ def cluttered_room(blocks, size=0.02, cells=1):
     `cells` x `cells` quads a side),
     a 0.5 m square 1 cm under the ceiling emitting radiance 10 downwards ('Panel', black, 7.85 W),
     and `blocks` closed 2 cm cubes (six faces each, rho 0.7) standing on the floor in one object
-    'Blocks', scattered as an artist's scatter leaves them (native/tests/test_hierarchy.cpp's
+    'Blocks', scattered as an artist's scatter leaves them (native/core/hierarchy/tests/test_hierarchy.cpp's
     scatter_blocks, the same generator): some overlap, one in eight is pressed against the one
     before (a shared face), one in sixteen stands beside it 30 um off flush (the floor's contact
     cuts then leave a sliver thinner than the hierarchy's weld between their outlines)."""

@@ -7,8 +7,8 @@
 /// are estimated from the sampled rows instead of storing the matrix. Methods: 0 Gauss-Seidel,
 /// 1 Jacobi, 2 progressive refinement.
 
-#include "radiosity/solver.h"
-#include "test_util.h"
+#include "solve/solver.h"
+#include "testing/test_util.h"
 
 #include <benchmark/benchmark.h>
 

@@ -3,9 +3,9 @@
 /// a 1e6-triangle terrain that intersects nothing, and the Cornell box. Argument: cut off (0) or on (1).
 /// And of interpolate_corners on the terrain's 1e6 elements (the last stage of every bake).
 
-#include "radiosity/interpolation.h"
-#include "radiosity/scene.h"
-#include "test_util.h"
+#include "output/interpolation.h"
+#include "geometry/scene.h"
+#include "testing/test_util.h"
 
 #include <benchmark/benchmark.h>
 

@@ -10,8 +10,8 @@
 /// Settings: element hemi-cubes at resolution 64, zone cubes at 32 (6144 rays), grey fog
 /// K_t = 2 / m, albedo 0.8, ceiling lamp 15.
 
-#include "radiosity/zonal_bake.h"
-#include "test_util.h"
+#include "bake/media_bake.h"
+#include "testing/test_util.h"
 
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>

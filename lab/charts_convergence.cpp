@@ -7,8 +7,8 @@
 /// progressive refinement every 10% of a sweep (n shots).
 #include "charts.h"
 
-#include "radiosity/solver.h"
-#include "test_util.h"
+#include "solve/solver.h"
+#include "testing/test_util.h"
 
 #include <cstdio>
 

@@ -6,9 +6,9 @@
 /// repeated until 50 ms have passed.
 #include "charts.h"
 
-#include "radiosity/near_field.h"
-#include "radiosity/row_renderer.h"
-#include "test_util.h"
+#include "transport/near_field.h"
+#include "transport/row_renderer.h"
+#include "testing/test_util.h"
 
 #include <glm/geometric.hpp>
 

@@ -6,11 +6,11 @@
 /// plot_native.py joins them into stability_before_after.png.
 #include "charts.h"
 
-#include "radiosity/bake.h"
-#include "radiosity/form_factors.h"
-#include "radiosity/near_field.h"
-#include "radiosity/solver.h"
-#include "test_util.h"
+#include "bake/bake.h"
+#include "transport/form_factors.h"
+#include "transport/near_field.h"
+#include "solve/solver.h"
+#include "testing/test_util.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 #include "charts.h"
 #include "hierarchy_error.h"
 #include "hierarchy_scenes.h"
-#include "radiosity/bake.h"
-#include "radiosity/hierarchy.h"
+#include "bake/bake.h"
+#include "hierarchy/hierarchy.h"
 
 #include <cstdio>
 #include <fstream>

@@ -5,7 +5,7 @@
 
 #include "hierarchy_error.h"
 #include "hierarchy_scenes.h"
-#include "radiosity/scene.h"
+#include "geometry/scene.h"
 
 #include <cstddef>
 #include <string>

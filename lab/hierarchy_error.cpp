@@ -2,8 +2,8 @@
 
 #include "hierarchy_locate.h"
 
-#include "radiosity/hierarchy.h"
-#include "radiosity/interpolation.h"
+#include "hierarchy/hierarchy.h"
+#include "output/interpolation.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

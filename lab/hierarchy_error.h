@@ -3,8 +3,8 @@
 /// read at a dense grid of points over every input polygon.
 #pragma once
 
-#include "radiosity/lights.h"
-#include "radiosity/scene.h"
+#include "transport/lights.h"
+#include "geometry/scene.h"
 
 #include <cstddef>
 #include <vector>

@@ -3,7 +3,7 @@
 #include "hierarchy_accuracy.h"
 #include "hierarchy_error.h"
 #include "hierarchy_locate.h"
-#include "radiosity/hierarchy.h"
+#include "hierarchy/hierarchy.h"
 
 #include <glm/geometric.hpp>
 

@@ -2,7 +2,7 @@
 
 #include "charts.h"
 #include "hierarchy_scenes.h"
-#include "radiosity/hierarchy.h"
+#include "hierarchy/hierarchy.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>

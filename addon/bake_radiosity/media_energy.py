@@ -1,7 +1,7 @@
 """Where the light went when media take part: energy.balance's surface terms plus the zones'.
 
 A zone of weight w = 4 K_t V emits pi w E (E = emission / K_t, its emitted radiance) and absorbs
-pi w (1 - Omega) H of the mean radiance H it receives (zonal_bake.h), as a surface emits pi A E
+pi w (1 - Omega) H of the mean radiance H it receives (bake/media_bake.h), as a surface emits pi A E
 and absorbs pi A (1 - rho) H. In a closed scene emitted = absorbed checks the whole zonal bake."""
 
 import math

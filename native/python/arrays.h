@@ -2,7 +2,7 @@
 /// @brief Checked views of numpy arrays and conversions of core results to numpy.
 #pragma once
 
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -6,7 +6,7 @@
 #include "progress.h"
 #include "progress_monitor.h"
 
-#include "radiosity/bake.h"
+#include "bake/bake.h"
 
 #include <string>
 

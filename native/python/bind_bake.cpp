@@ -5,8 +5,8 @@
 #include "bindings.h"
 #include "scene_arrays.h"
 
-#include "radiosity/bake.h"
-#include "radiosity/resolution.h"
+#include "bake/bake.h"
+#include "visibility/resolution.h"
 
 #include <pybind11/stl.h>
 

@@ -6,7 +6,7 @@
 #include "bindings.h"
 #include "scene_arrays.h"
 
-#include "radiosity/hierarchy.h"
+#include "hierarchy/hierarchy.h"
 
 #include <pybind11/stl.h>
 

@@ -6,8 +6,8 @@
 #include "bindings.h"
 #include "scene_arrays.h"
 
-#include "radiosity/volume.h"
-#include "radiosity/zonal_bake.h"
+#include "media/volume.h"
+#include "bake/media_bake.h"
 
 #include <pybind11/stl.h>
 

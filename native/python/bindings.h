@@ -2,8 +2,8 @@
 /// @brief The parts of the `_core` module, each bound in its own file.
 #pragma once
 
-#include "radiosity/lights.h"
-#include "radiosity/world.h"
+#include "transport/lights.h"
+#include "transport/world.h"
 
 #include <pybind11/pybind11.h>
 

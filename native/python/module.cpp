@@ -3,7 +3,7 @@
 #include "bindings.h"
 #include "progress_monitor.h"
 
-#include "radiosity/types.h"
+#include "common/types.h"
 
 namespace py = pybind11;
 

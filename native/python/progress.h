@@ -2,7 +2,7 @@
 /// @brief Calls a Python progress callback from the core, which runs without the GIL.
 #pragma once
 
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <pybind11/pybind11.h>
 

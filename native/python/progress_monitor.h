@@ -6,7 +6,7 @@
 /// keeps the latest report in C++ under a mutex; Blender's modal timer reads it and may cancel.
 #pragma once
 
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <pybind11/pybind11.h>
 

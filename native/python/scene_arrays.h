@@ -4,7 +4,7 @@
 
 #include "arrays.h"
 
-#include "radiosity/scene.h"
+#include "geometry/scene.h"
 
 #include <optional>
 

@@ -1,7 +1,7 @@
 /// @file vdb_read.cpp
 /// @brief Reading an OpenVDB grid onto an axis-aligned world grid by box-averaged trilinear samples.
 #include "radiosity/vdb_io.h"
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>

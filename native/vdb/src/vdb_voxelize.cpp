@@ -1,7 +1,7 @@
 /// @file vdb_voxelize.cpp
 /// @brief The inside of a closed mesh as a per-cell volume fraction, through OpenVDB's level sets.
 #include "radiosity/vdb_io.h"
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>

@@ -1,7 +1,7 @@
 /// @file vdb_write.cpp
 /// @brief Writing world grids as sparse OpenVDB grids (zero cells stay inactive).
 #include "radiosity/vdb_io.h"
-#include "radiosity/types.h"
+#include "common/types.h"
 
 #include <openvdb/openvdb.h>
 

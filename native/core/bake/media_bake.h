@@ -1,0 +1,48 @@
+/// @file media_bake.h
+/// @brief The bake with participating media: elements, zones, exchange factors, the coupled solve,
+/// corner colours and the grids a renderer needs to show the media.
+///
+/// Output grids per medium (zonal_grids.h): `density` = K_t and `emission` = K_t J on a lattice
+/// `grid_subdivision` times finer than the voxels, J interpolated between the zones' radiances L_k
+/// (at subdivision 1 without merging: K_t L_k per zone, zero outside zones). A purely absorbing
+/// volume with these, as Cycles renders one (emission * tau ds along the ray), gives the seed's ray integral (13):
+/// inside zone k, int J K_t tau ds = J (tau_in - tau_out) where J is constant. Where K_t differs
+/// per channel the density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1
+/// and absorption colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per
+/// channel otherwise.
+#pragma once
+
+#include "bake/bake.h"
+#include "media/zonal.h"
+#include "media/zonal_grids.h"
+
+namespace radiosity {
+
+/// Uniform regions merge into octree blocks of up to 2^this voxels per edge (build_zones): the
+/// exchange factors cost zones squared, and a block's radiance is spread back over its voxels as a
+/// linear field (voxel_radiance). 0 keeps one zone per voxel. Chosen in docs/volumes.md.
+constexpr int kDefaultMaxBlockLevel = 1;
+
+struct ZonalBakeResult {
+    /// As bake() returns it; solve.radiance and colors hold the elements only.
+    BakeResult surfaces;
+    Zones zones;                     ///< after merging; zones.block[k]^3 voxels each
+    std::vector<Rgb> zone_radiance;  ///< L_k per zone
+    /// H_k = sum_y R_ky L_y: the mean radiance a zone receives, so a caller can count the power it
+    /// absorbs, pi (4 K_t V) (1 - Omega) H_k (its radiance alone cannot say when Omega = 0).
+    std::vector<Rgb> zone_incident;
+    std::vector<MediumGrids> grids;  ///< per medium, at grid_subdivision (medium_grids())
+    double seconds_zones = 0.0;
+};
+
+/// bake() with media: the elements' hemi-cubes (settings.resolution) and the zones' full cubes
+/// (zone_resolution) see through the media's zones (uniform blocks merged up to max_block_level),
+/// made reciprocal (enforce_reciprocity); the rows are stored within settings.matrix_budget_bytes
+/// (half of it for progressive refinement, which also holds R^T), else InputError. Point, spot and
+/// sun lamps are not shot through media yet, so settings.lights must be empty when there are zones
+/// (InputError); emitting polygons light media. Progress phases "form_factors", "solve"; throws Cancelled.
+ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
+                                int zone_resolution = 32, const ProgressFn& progress = {}, int grid_subdivision = 1,
+                                int max_block_level = kDefaultMaxBlockLevel);
+
+}  // namespace radiosity

@@ -1,0 +1,125 @@
+/// @file scene.h
+/// @brief Scene input as flat arrays, and its subdivision into elements (the unknowns).
+#pragma once
+
+#include "common/types.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace radiosity {
+
+/// A polygon soup as flat arrays (views; the caller owns the memory). Units: metres, world space.
+/// Polygon f has corners corner_vertices[face_offsets[f] .. face_offsets[f+1]), counter-clockwise
+/// seen from the side its normal points to (Blender's convention).
+struct SceneInput {
+    const float* positions = nullptr;         ///< vertex_count x 3
+    std::size_t vertex_count = 0;
+    const int32_t* face_offsets = nullptr;    ///< face_count + 1, starts at 0, increasing
+    const int32_t* corner_vertices = nullptr; ///< face_offsets[face_count] vertex indices
+    std::size_t face_count = 0;
+    const float* reflectance = nullptr;       ///< face_count x 3, each in [0, 1)
+    const float* emission = nullptr;          ///< face_count x 3, emitted radiance, >= 0
+    const int32_t* material = nullptr;        ///< face_count ids; corners never blend across ids. May be null.
+    /// face_count flags: an emitting face that emits from its front only, as Cycles' area lamps do
+    /// (other emitting faces emit from both sides, Elements::side). May be null: none.
+    const uint8_t* front_only = nullptr;
+};
+
+/// The unknowns of the radiosity system: small planar triangles or quads, each a uniform
+/// emitter and reflector. Elements of one polygon share their grid vertices.
+struct Elements {
+    std::vector<Vec3> vertices;                   ///< element grid vertices, world space
+    std::vector<std::array<int32_t, 4>> corners;  ///< indices into vertices, CCW; [3] == -1 for a triangle
+    std::vector<Vec3> centre;                     ///< centroid (hemi-cubes sit here)
+    std::vector<Vec3> normal;                     ///< unit normal
+    std::vector<float> area;                      ///< square metres
+    std::vector<int32_t> polygon;                 ///< input polygon each element came from (cut pieces too)
+    std::vector<Rgb> reflectance;                 ///< per element, in [0, 1)
+    std::vector<Rgb> emission;                    ///< emitted radiance per element
+    /// Bit k: the edge from corner k to corner k + 1 lies where another polygon passes through this
+    /// element's polygon; corner colours do not blend across it. Empty = no such edges.
+    std::vector<uint8_t> cut_edges;
+    /// Emitting polygons are two-sided, as in Cycles, where a face with an emissive material emits
+    /// (and reflects) from both sides: build_elements gives each of their elements a back side, a
+    /// twin on the same vertices with its corners reversed (normal, centre, area, polygon,
+    /// reflectance and emission as the front's, normal negated), appended after all the fronts.
+    /// Per element: kOneSided, kFront (of such a pair) or kBack. The twins never hide each other:
+    /// an element that has a twin, seen from behind, is left to its twin (hemi-cube, sun raster).
+    /// A back side is solved like any element but its colours are not written (the mesh shows its
+    /// front, as Blender draws it): interpolation skips it. Empty = every element one-sided.
+    std::vector<uint8_t> side;
+    static constexpr uint8_t kOneSided = 0, kFront = 1, kBack = 2;
+
+    /// Input corner -> element vertex holding the polygon's corner (for writing back colours);
+    /// -1 for corners of skipped (degenerate) polygons.
+    std::vector<int32_t> corner_vertex;
+
+    std::size_t size() const { return centre.size(); }
+    /// Per element: 1 for a lamp's (an emitting face marked front only, SceneInput::front_only):
+    /// as in Cycles it emits but blocks no light, so hemi-cubes and rays pass through it and its
+    /// light reaches the other elements directly (small_emitters.h). Empty: no lamps.
+    std::vector<uint8_t> lamp;
+    bool blocks(std::size_t e) const { return lamp.empty() || !lamp[e]; }
+    int corner_count(std::size_t e) const { return is_triangle(e) ? 3 : 4; }
+    bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
+    /// Whether element e is one of a front and back pair (see `side`).
+    bool has_twin(std::size_t e) const { return !side.empty() && side[e] != kOneSided; }
+    /// Whether element e is the back side of an emitting polygon (see `side`).
+    bool is_back(std::size_t e) const { return !side.empty() && side[e] == kBack; }
+};
+
+/// Why a polygon was left out.
+enum class Defect : int32_t { ZeroArea = 1, NonFinite = 2, TooFewCorners = 3, BadIndex = 4 };
+
+struct SkippedPolygon {
+    int32_t polygon;
+    Defect defect;
+};
+
+struct BuildResult {
+    Elements elements;
+    std::vector<SkippedPolygon> skipped;  ///< never used silently: callers report these
+};
+
+/// Guards of the subdivision against input it cannot serve.
+struct ElementLimits {
+    /// More elements than this is an InputError naming the polygon that crosses the cap, raised
+    /// before any element is made (a 1e6 m floor at 1 cm would be 1e16 elements). 2^21 elements
+    /// take about 250 MB here, and a bake of that many takes hours; real scenes need far fewer.
+    std::size_t max_elements = std::size_t(1) << 21;
+    /// Thin slivers (docs/stability.md), 0 = off. Convex quads: cut the long direction further
+    /// until no element is longer than `max_aspect` times its width. Triangles longer than
+    /// `max_aspect` times their height: cut into strips across their length, from the corner
+    /// opposite a short edge, or from both ends of the longest edge to the altitude's foot.
+    float max_aspect = 0.0f;
+    /// Cut polygons along the lines where other polygons pass through them, before subdividing, so
+    /// that no element straddles an intersection and leaks light across it (docs/stability.md).
+    bool cut_intersections = true;
+    /// With cut_intersections: cut them along contact lines too, where another polygon stands on
+    /// them (a box on a floor), so no element straddles the footprint's outline; and along the
+    /// outline of an emitting polygon hung close in front of them (parallel, within a tenth of its
+    /// longest edge, its back side towards them: a panel under a ceiling), so no element straddles
+    /// the edge of the light its back side casts. Off here, on in the uniform and hierarchical
+    /// bakes (BakeSettings::limits, HierarchySettings::limits).
+    bool cut_contacts = false;
+
+    /// These limits with contact cuts on.
+    ElementLimits with_contacts() const {
+        ElementLimits limits = *this;
+        limits.cut_contacts = true;
+        return limits;
+    }
+};
+
+/// Splits every polygon into elements whose edges are at most `max_edge` metres long
+/// (0 = one element per polygon; n-gons are always split into triangles and quads), after cutting
+/// it along the lines where other polygons pass through it (`limits.cut_intersections`). Every
+/// element of an emitting polygon (emission > 0 in any channel) gets a back side (Elements::side),
+/// after all the polygons' elements.
+/// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
+/// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.
+BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {});
+
+}  // namespace radiosity

@@ -1,0 +1,68 @@
+/// @file final_gather.h
+/// @brief The uniform bake's final gather at its output corners (internal; final_gather_settings.h).
+///
+/// The radiosity solution is kept for the smooth indirect light; what the artist sees at each
+/// output corner is computed at the corner itself (Lischinski, Tampieri & Greenberg 1993's local
+/// pass; the final gather of photon maps):
+///   L(x) = L_e(x) + rho(x) [direct(x) + indirect(x)]
+///  - direct(x) = sum over emitting elements j of L_e,j F_xj V_xj, with F_xj the exact unoccluded
+///    point-to-polygon factor (Lambert's contour integral, near_field.h) and V_xj the share of j
+///    that stratified shadow rays find unhidden (each weighted by cos cos / r^2), plus the lamps'
+///    irradiance at x / pi (one shadow ray per lamp, lamp_points.h), plus the world's irradiance
+///    at x / pi (world_light.h);
+///  - indirect(x) = the mean, over stratified cosine-weighted rays, of the solved radiance where
+///    the ray first hits an element, less that element's own emission (emission is direct's;
+///    lamps' first reflection, which the solve folds into the elements' emission, is indirect
+///    light and is counted). The solved radiance there is the element's interpolated corner
+///    colours blended at the hit point (smooth next to seams, where the flat element value is
+///    not); on an emitter's back side, which has no corner colours, its solved value. Misses and
+///    back faces bring nothing (as in the hemi-cube).
+/// The point x is the corner's element vertex moved a hair into its element (towards the
+/// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
+/// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
+/// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
+/// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
+/// towards its polygon's centre (1, 2 and 4 times as far as its element's centre: the element may
+/// lie wholly under what buries it, as a floor cut along a wall's footprint), so it takes its
+/// light from the visible side; if it is still buried, it keeps the interpolated colour. Every
+/// element vertex holding an input corner is gathered once, so each face's corner has its own
+/// value: where a block stands on a floor, the floor's faces around the block's corner see it
+/// differently (as Cycles bakes them). Where a smooth surface bends, its faces' corners share
+/// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded),
+/// so faces meeting at a vertex use the same rays and differ only where the light does, and the
+/// result does not depend on threads.
+///
+/// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
+/// other surface right at the seam, where the interpolated solution is least like the light. So
+/// the vertices on seams are gathered too, and the points whose rays met a seam are gathered
+/// again from those values, in 3 passes in all (the last for the output points only).
+///
+/// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
+/// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
+/// whose emitters are split into thousands of elements pays for each at every corner).
+#pragma once
+
+#include "output/final_gather_settings.h"
+#include "output/interpolation.h"
+#include "transport/lights.h"
+#include "transport/world.h"
+
+namespace radiosity::detail {
+
+struct GatherCounts {
+    std::size_t gathered = 0, buried = 0;
+};
+
+/// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
+/// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
+/// each element's own emission (without the lamps' and the world's first reflection), `radiance`
+/// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
+/// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
+/// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather", one unit per
+/// gathered vertex, then "gather seams" for each later pass; throws Cancelled.
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
+                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
+                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
+                          CornerColors& colors, CornerColors& light_colors, const ProgressFn& progress);
+
+}  // namespace radiosity::detail

@@ -1,0 +1,285 @@
+/// @file test_final_gather.cpp
+/// @brief The uniform bake's final gather at the output corners (bake.h FinalGatherSettings):
+/// exact direct light from an emitter and from a point lamp where interpolation is far off, the
+/// furnace at every corner (seams of a closed box), determinism, and cancelling.
+#include "bake/bake.h"
+
+#include "testing/test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace radiosity {
+namespace {
+
+BakeSettings gather_settings(float element_size, bool gather) {
+    BakeSettings s;
+    s.element_size = element_size;
+    s.resolution = 128;
+    s.solve.tolerance = 1e-8;
+    s.final_gather.enabled = gather;
+    return s;
+}
+
+/// Four 5 m floor quads (normal +z) meeting at the origin; their corners there are input corners.
+void add_floor(test::SceneArrays& s, const Rgb& rho) {
+    s.add_quad({0, 0, 0}, {5, 0, 0}, {5, 5, 0}, {0, 5, 0}, rho);
+    s.add_quad({-5, 0, 0}, {0, 0, 0}, {0, 5, 0}, {-5, 5, 0}, rho);
+    s.add_quad({-5, -5, 0}, {0, -5, 0}, {0, 0, 0}, {-5, 0, 0}, rho);
+    s.add_quad({0, -5, 0}, {5, -5, 0}, {5, 0, 0}, {0, 0, 0}, rho);
+}
+
+/// The input corners at point p.
+std::vector<std::size_t> corners_at(const test::SceneArrays& s, const Vec3& p) {
+    std::vector<std::size_t> found;
+    for (std::size_t c = 0; c < s.corner_vertices.size(); ++c) {
+        const float* q = &s.positions[3 * s.corner_vertices[c]];
+        if (q[0] == p.x && q[1] == p.y && q[2] == p.z) found.push_back(c);
+    }
+    return found;
+}
+
+/// A unit square of radiance Le (reflecting nothing) at height h over the origin, facing down.
+void add_emitter(test::SceneArrays& s, double h, const Rgb& Le) {
+    const float z = float(h);
+    s.add_quad({-0.5f, -0.5f, z}, {-0.5f, 0.5f, z}, {0.5f, 0.5f, z}, {0.5f, -0.5f, z}, Rgb(0.0), Le, 1);
+}
+
+/// Bakes `s` at 0.5 m elements under a point lamp of intensity I at height h over the origin.
+BakeResult bake_under_lamp(const test::SceneArrays& s, const Rgb& I, double h, bool gather) {
+    BakeSettings settings = gather_settings(0.5f, gather);
+    PointLight lamp;
+    lamp.position = Vec3(0.0f, 0.0f, float(h));
+    lamp.intensity = I;
+    settings.lights.points.push_back(lamp);
+    return bake(s.input(), settings);
+}
+
+/// Largest |L / expected - 1| over the channels of the input corners `corners`.
+double worst_relative_error(const BakeResult& r, const std::vector<std::size_t>& corners, const Rgb& expected) {
+    double worst = 0.0;
+    for (const std::size_t c : corners)
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(r.colors.input_corner[c][k] / expected[k] - 1.0));
+    return worst;
+}
+
+/// Howell's factor from a point to a parallel a x b rectangle at distance c, the point under one
+/// of its corners.
+double corner_factor(double a, double b, double c) {
+    const double X = a / c, Y = b / c;
+    return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
+            Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
+           (2 * M_PI);
+}
+
+TEST(FinalGather, CeilingOverAnEmittersBackIsExact) {
+    // The unit emitter faces down, 5 cm under a large ceiling that faces down too: the ceiling sees
+    // only the emitter's back side (emitting faces are two-sided), L = rho Le F. The gather's rays
+    // up there meet the emitter's two coincident sides; the one facing them is the one they see,
+    // so the ceiling is neither dark nor taken for buried.
+    const double gap = 0.05, h = 1.0;
+    const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
+    test::SceneArrays s;
+    add_emitter(s, h, Le);
+    const float top = float(h + gap);
+    for (const auto& [x0, y0] : {std::pair{0.0f, 0.0f}, {-5.0f, 0.0f}, {-5.0f, -5.0f}, {0.0f, -5.0f}})
+        s.add_quad({x0, y0, top}, {x0, y0 + 5, top}, {x0 + 5, y0 + 5, top}, {x0 + 5, y0, top}, rho);  // normal -z
+    const Rgb expected = rho * Le * (4.0 * corner_factor(0.5, 0.5, gap));
+    const std::vector<std::size_t> over = corners_at(s, Vec3(0.0f, 0.0f, top));
+    ASSERT_EQ(over.size(), 4u);
+    const BakeResult r = bake(s.input(), gather_settings(0.5f, true));
+    const double worst = worst_relative_error(r, over, expected);
+    std::printf("ceiling over the emitter's back %.6f (exact %.6f), worst relative error %.2e\n",
+                r.colors.input_corner[over[0]].g, expected.g, worst);
+    EXPECT_LT(worst, 1e-3);
+    EXPECT_EQ(r.buried_points, 0u);
+}
+
+TEST(FinalGather, FloorUnderASquareEmitterIsExact) {
+    // A unit square of radiance Le (reflecting nothing) at height h over the centre of a large
+    // floor: the floor's vertex under it has L = rho Le F, F Howell's point-to-square factor (four
+    // corner rectangles of 0.5 x 0.5). Nothing else lights the floor: its rays hit the emitter
+    // (radiance less emission: 0) or leave the scene.
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
+    test::SceneArrays s;
+    add_emitter(s, h, Le);
+    add_floor(s, rho);
+    const Rgb expected = rho * Le * (4.0 * corner_factor(0.5, 0.5, h));
+    const std::vector<std::size_t> under = corners_at(s, Vec3(0.0f));
+    ASSERT_EQ(under.size(), 4u);
+    for (const bool gather : {false, true}) {
+        const BakeResult r = bake(s.input(), gather_settings(0.5f, gather));
+        const double worst = worst_relative_error(r, under, expected);
+        std::printf("gather %d: floor under the emitter %.6f (exact %.6f), worst relative error %.2e, %.3f s gather\n",
+                    int(gather), r.colors.input_corner[under[0]].g, expected.g, worst, r.seconds_gather);
+        if (gather) {
+            EXPECT_LT(worst, 1e-3);
+            EXPECT_EQ(r.buried_points, 0u);
+        } else {
+            EXPECT_GT(worst, 2e-2);  // interpolating the elements around it is far off
+        }
+    }
+}
+
+TEST(FinalGather, WallStandingUnderTheEmitterHidesExactlyHalfOfIt) {
+    // As above, with a thin black wall (x in [-1 mm, 0], 0.3 m high, no bottom) standing on the
+    // floor along y under the emitter's centre line. The floor's corners at the origin on the +x
+    // side lie at the wall's foot, a seam: their shadow rays see exactly the emitter's +x half (its
+    // elements split at x = 0). Those on the -x side are inside the wall (buried, and so is their
+    // element, cut along the wall's footprint): they are gathered further into their polygon.
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5);
+    test::SceneArrays s;
+    add_emitter(s, h, Le);
+    add_floor(s, rho);
+    const float x0 = -0.001f, x1 = 0.0f, y0 = -1.0f, y1 = 1.0f, z1 = 0.3f;
+    const Rgb black(0.0);
+    s.add_quad({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, black, black, 2);  // top, +z
+    s.add_quad({x0, y0, 0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, 0}, black, black, 2);    // -x
+    s.add_quad({x1, y0, 0}, {x1, y1, 0}, {x1, y1, z1}, {x1, y0, z1}, black, black, 2);    // +x
+    s.add_quad({x0, y0, 0}, {x1, y0, 0}, {x1, y0, z1}, {x0, y0, z1}, black, black, 2);    // -y
+    s.add_quad({x0, y1, 0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, 0}, black, black, 2);    // +y
+    const Rgb expected = rho * Le * (2.0 * corner_factor(0.5, 0.5, h));
+    std::vector<std::size_t> lit;  // the corners at the origin of the floor quads on the +x side
+    for (const std::size_t c : corners_at(s, Vec3(0.0f)))
+        if (c < 4 * 5 && (c / 4 == 1 || c / 4 == 4)) lit.push_back(c);
+    ASSERT_EQ(lit.size(), 2u);
+    for (const bool gather : {false, true}) {
+        const BakeResult r = bake(s.input(), gather_settings(0.5f, gather));
+        const double worst = worst_relative_error(r, lit, expected);
+        for (const Rgb& L : r.colors.input_corner)
+            for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(L[k]) && L[k] >= 0.0);
+        std::printf("gather %d: floor at the wall's foot %.6f (exact %.6f), worst relative error %.2e; "
+                    "%zu points gathered, %zu buried\n",
+                    int(gather), r.colors.input_corner[lit[0]].g, expected.g, worst, r.gathered_points, r.buried_points);
+        if (gather) {
+            EXPECT_LT(worst, 1e-3);
+            EXPECT_EQ(r.buried_points, 0u);
+        } else {
+            EXPECT_GT(worst, 2e-2);
+        }
+    }
+}
+
+TEST(FinalGather, FloorUnderAPointLampIsExact) {
+    // A point lamp of intensity I at height h over the floor's centre: the vertex under it has
+    // L = rho I / (pi h^2) exactly; the rest of the floor lights it only by what escapes (nothing).
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), I(1.0, 2.0, 3.0);
+    test::SceneArrays s;
+    add_floor(s, rho);
+    for (const bool gather : {false, true}) {
+        const BakeResult r = bake_under_lamp(s, I, h, gather);
+        const Rgb expected = rho * I / (M_PI * h * h);
+        const double worst = worst_relative_error(r, corners_at(s, Vec3(0.0f)), expected);
+        std::printf("gather %d: floor under the lamp, worst relative error %.2e\n", int(gather), worst);
+        if (gather) EXPECT_LT(worst, 1e-3);
+        else EXPECT_GT(worst, 2e-2);
+    }
+}
+
+TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
+    // The light arriving under the lamp is I / (pi h^2), whatever the colour, and light x rho is the
+    // radiance at every corner. A channel of reflectance 0: the gather still finds its light; the
+    // interpolated light is 0 there (nothing in the element's radiance tells it).
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.0, 0.7), I(1.0, 2.0, 3.0);
+    test::SceneArrays s;
+    add_floor(s, rho);
+    for (const bool gather : {false, true}) {
+        const BakeResult r = bake_under_lamp(s, I, h, gather);
+        ASSERT_EQ(r.light_colors.input_corner.size(), r.colors.input_corner.size());
+        for (std::size_t c = 0; c < r.colors.input_corner.size(); ++c)
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(r.light_colors.input_corner[c][k] * rho[k], r.colors.input_corner[c][k],
+                            1e-6 * (1.0 + r.colors.input_corner[c][k]));
+        const Rgb expected = I / (M_PI * h * h);
+        for (const std::size_t c : corners_at(s, Vec3(0.0f))) {
+            const Rgb& light = r.light_colors.input_corner[c];
+            std::printf("gather %d: light under the lamp %.5f %.5f %.5f, exact %.5f %.5f %.5f\n", int(gather),
+                        light.r, light.g, light.b, expected.r, expected.g, expected.b);
+            if (gather) {
+                for (int k = 0; k < 3; ++k) EXPECT_NEAR(light[k] / expected[k], 1.0, 1e-3);
+            } else {
+                EXPECT_EQ(light.g, 0.0);
+            }
+        }
+    }
+}
+
+TEST(FinalGather, FurnaceAtEveryCornerOfAClosedBox) {
+    // Closed box, uniform E and rho: L = E / (1 - rho) everywhere, at each box corner too, where
+    // three faces meet: the unoccluded factors to the other faces sum to 1, and no gather ray may
+    // slip out through a seam or stop at the neighbouring face at distance 0. Every corner must be
+    // gathered (none judged buried).
+    const Rgb rho(0.5, 0.7, 0.9), E(1.0, 0.5, 2.0);
+    const Rgb expected = E / (1.0 - rho);
+    const test::SceneArrays box = test::closed_box(Vec3(1.0f, 1.5f, 0.8f), rho, E);
+    for (const float element_size : {0.0f, 0.3f}) {
+        const BakeResult r = bake(box.input(), gather_settings(element_size, true));
+        ASSERT_EQ(r.colors.input_corner.size(), 24u);
+        EXPECT_EQ(r.gathered_points, 24u);
+        EXPECT_EQ(r.buried_points, 0u);
+        double worst = 0.0;
+        for (const Rgb& L : r.colors.input_corner)
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(L[c] / expected[c] - 1.0));
+        std::printf("furnace element_size %.1f: worst corner %.2e\n", element_size, worst);
+        EXPECT_LT(worst, 1e-3) << element_size;
+    }
+}
+
+TEST(FinalGather, ABendingSmoothSurfaceKeepsOneColourPerVertex) {
+    // Two faces folded by 20 degrees (within the hard-edge angle) along y, under an emitter off to
+    // one side: each sees it differently, but the vertices they share show one colour, the mean
+    // of theirs, as interpolation would; the faces' far corners keep their own.
+    const Rgb rho(0.5), Le(1.0);
+    const float rise = std::tan(20.0f * float(M_PI) / 180.0f);
+    test::SceneArrays s;
+    s.add_quad({-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}, rho);                  // flat, +z
+    s.add_quad({0, 0, 0}, {1, 0, rise}, {1, 1, rise}, {0, 1, 0}, rho);              // rising, about +z
+    s.add_quad({-0.5f, 0, 1.5f}, {-0.5f, 1, 1.5f}, {1, 1, 1.5f}, {1, 0, 1.5f}, Rgb(0), Le, 1);  // emitter, -z
+    const BakeResult r = bake(s.input(), gather_settings(0.25f, true));
+    ASSERT_EQ(r.gathered_points, 12u);
+    for (const Vec3 ridge : {Vec3(0, 0, 0), Vec3(0, 1, 0)}) {
+        const std::vector<std::size_t> at = corners_at(s, ridge);
+        ASSERT_EQ(at.size(), 2u);
+        EXPECT_EQ(r.colors.input_corner[at[0]], r.colors.input_corner[at[1]]);
+        EXPECT_GT(r.colors.input_corner[at[0]].g, 0.0);
+    }
+}
+
+TEST(FinalGather, SameBakeTwiceIsBitIdentical) {
+    const test::SceneArrays box = test::cornell_box();
+    const BakeSettings settings = gather_settings(0.1f, true);
+    const BakeResult a = bake(box.input(), settings), b = bake(box.input(), settings);
+    ASSERT_GT(a.gathered_points, 0u);
+    ASSERT_EQ(a.colors.input_corner.size(), b.colors.input_corner.size());
+    for (const Rgb& L : a.colors.input_corner)
+        for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(L[c]) && L[c] >= 0.0);
+    EXPECT_EQ(std::memcmp(a.colors.input_corner.data(), b.colors.input_corner.data(),
+                          a.colors.input_corner.size() * sizeof(Rgb)),
+              0);
+    std::printf("Cornell box: %zu corners gathered, %zu buried, %.3f s\n", a.gathered_points, a.buried_points,
+                a.seconds_gather);
+}
+
+TEST(FinalGather, ReportsProgressAndCancels) {
+    const test::SceneArrays box = test::closed_box(Vec3(1.0f), Rgb(0.5), Rgb(1.0));
+    std::size_t reports = 0;
+    const BakeResult r = bake(box.input(), gather_settings(0.5f, true), [&](const Progress& p) {
+        if (std::strcmp(p.phase, "gather") == 0) ++reports;
+        return true;
+    });
+    EXPECT_GT(reports, 0u);
+    EXPECT_EQ(r.gathered_points, 24u);
+    EXPECT_THROW(bake(box.input(), gather_settings(0.5f, true),
+                      [](const Progress& p) { return std::strcmp(p.phase, "gather") != 0; }),
+                 Cancelled);
+}
+
+}  // namespace
+}  // namespace radiosity

@@ -1,0 +1,186 @@
+/// @file ray_tracer.cpp
+/// @brief The patches as one Embree quad geometry (triangles as quads with a repeated corner).
+///
+/// Embree is opened privately (shared_library.h: dlopen with RTLD_LOCAL) and called through the
+/// addresses dlsym gives, never linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc* calls
+/// would bind to the Embree loaded first, whatever version it is (an Embree 3 call on Embree 4
+/// misses every ray: hierarchical bakes lose their shadows without an error). dlsym on our own
+/// handle returns our Embree's functions; Embree exports nothing but its rtc* API and does not
+/// call it itself, so nothing inside it binds to the other Embree either.
+#include "visibility/ray_tracer.h"
+
+#include "visibility/shared_library.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace radiosity::hr {
+
+namespace {
+
+/// The Embree functions used here (decltype is unevaluated: no reference to the symbols).
+struct Embree {
+    decltype(&::rtcNewDevice) newDevice;
+    decltype(&::rtcReleaseDevice) releaseDevice;
+    decltype(&::rtcNewScene) newScene;
+    decltype(&::rtcReleaseScene) releaseScene;
+    decltype(&::rtcSetSceneBuildQuality) setSceneBuildQuality;
+    decltype(&::rtcSetSceneFlags) setSceneFlags;
+    decltype(&::rtcCommitScene) commitScene;
+    decltype(&::rtcNewGeometry) newGeometry;
+    decltype(&::rtcSetNewGeometryBuffer) setNewGeometryBuffer;
+    decltype(&::rtcCommitGeometry) commitGeometry;
+    decltype(&::rtcAttachGeometry) attachGeometry;
+    decltype(&::rtcReleaseGeometry) releaseGeometry;
+    decltype(&::rtcOccluded1) occluded1;
+    decltype(&::rtcIntersect1) intersect1;
+};
+
+Embree load_embree() {
+    void* library = nullptr;
+    std::string errors;
+    // A package ships its own Embree beside the module (tools/packaging); opened by path, it is
+    // that copy even when the host already loaded a library of the same soname.
+    for (const std::string& name : {shared_library::own_folder() + RADIOSITY_EMBREE_SONAME,
+                                     std::string(RADIOSITY_EMBREE_SONAME), std::string(RADIOSITY_EMBREE_PATH)}) {
+        if ((library = shared_library::open(name, errors))) break;
+    }
+    if (!library) throw std::runtime_error("Embree: cannot load " RADIOSITY_EMBREE_SONAME ": " + errors);
+    auto get = [library](auto& function, const char* name) {
+        void* address = shared_library::find(library, name);
+        if (!address) throw std::runtime_error(std::string("Embree: ") + RADIOSITY_EMBREE_SONAME + " has no " + name);
+        function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(address);
+    };
+    Embree e{};
+    get(e.newDevice, "rtcNewDevice");
+    get(e.releaseDevice, "rtcReleaseDevice");
+    get(e.newScene, "rtcNewScene");
+    get(e.releaseScene, "rtcReleaseScene");
+    get(e.setSceneBuildQuality, "rtcSetSceneBuildQuality");
+    get(e.setSceneFlags, "rtcSetSceneFlags");
+    get(e.commitScene, "rtcCommitScene");
+    get(e.newGeometry, "rtcNewGeometry");
+    get(e.setNewGeometryBuffer, "rtcSetNewGeometryBuffer");
+    get(e.commitGeometry, "rtcCommitGeometry");
+    get(e.attachGeometry, "rtcAttachGeometry");
+    get(e.releaseGeometry, "rtcReleaseGeometry");
+    get(e.occluded1, "rtcOccluded1");
+    get(e.intersect1, "rtcIntersect1");
+    return e;
+}
+
+/// Loaded on first use, once (a failed load throws and is tried again next time).
+const Embree& embree() {
+    static const Embree api = load_embree();
+    return api;
+}
+
+/// A ray from `origin` along `direction` between t_near and t_far (flags, time and id 0).
+RTCRay make_ray(const Vec3& origin, const Vec3& direction, float t_near, float t_far) {
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = t_near;
+    ray.tfar = t_far;
+    ray.mask = 0xFFFFFFFFu;
+    return ray;
+}
+
+}  // namespace
+
+Visibility::Visibility(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 4>>& corners,
+                       float scene_size)
+    : gap_(1e-6f * scene_size), scene_size_(scene_size) {
+    const Embree& e = embree();
+    device_ = e.newDevice(nullptr);
+    if (!device_) throw std::runtime_error("Embree: no device");
+    scene_ = e.newScene(device_);
+    e.setSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    e.setSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // watertight: rays along a shared edge must not slip through
+    RTCGeometry quads = e.newGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
+    auto* position = static_cast<float*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), vertices.size()));
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+        for (int a = 0; a < 3; ++a) position[3 * v + a] = vertices[v][a];
+    auto* index = static_cast<uint32_t*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
+                                                                 4 * sizeof(uint32_t), corners.size()));
+    for (std::size_t p = 0; p < corners.size(); ++p)
+        for (int k = 0; k < 4; ++k) index[4 * p + k] = static_cast<uint32_t>(corners[p][k] >= 0 ? corners[p][k] : corners[p][2]);
+    e.commitGeometry(quads);
+    e.attachGeometry(scene_, quads);
+    e.releaseGeometry(quads);
+    e.commitScene(scene_);
+}
+
+Visibility::~Visibility() {
+    embree().releaseScene(scene_);
+    embree().releaseDevice(device_);
+}
+
+bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const {
+    RTCRay ray = make_ray(origin, direction, t_near, t_far);
+#if RADIOSITY_EMBREE_MAJOR == 4
+    // Embree 4: the context became optional arguments; the defaults (incoherent rays, no filter,
+    // every feature) are Embree 3's rtcInitIntersectContext defaults.
+    RTCOccludedArguments arguments;
+    rtcInitOccludedArguments(&arguments);
+    embree().occluded1(scene_, &ray, &arguments);
+#else
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    embree().occluded1(scene_, &context, &ray);
+#endif
+    return ray.tfar < 0.0f;  // Embree marks a hit by tfar = -inf
+}
+
+bool Visibility::clear(const Vec3& from, const Vec3& to) const { return clear(from, to, 0.0f, 1.0f); }
+
+bool Visibility::clear(const Vec3& from, const Vec3& to, float begin, float end) const {
+    const Vec3 d = to - from;
+    const float length = glm::length(d);
+    if (!(length > 0.0f)) return true;
+    const float end_gap = std::max(1e-4f, gap_ / length);  // in units of the segment
+    begin = std::max(begin, end_gap);
+    end = std::min(end, 1.0f - end_gap);
+    if (!(begin < end)) return true;
+    return !occluded(from, d, begin, end);
+}
+
+bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
+    return !occluded(from, direction, std::max(gap_, 1e-6f), 2.0f * scene_size_ + 1.0f);
+}
+
+Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
+    RTCRayHit query{};
+    query.ray = make_ray(from, direction, t_near, 2.0f * scene_size_ + 1.0f);
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.primID = RTC_INVALID_GEOMETRY_ID;
+#if RADIOSITY_EMBREE_MAJOR == 4
+    RTCIntersectArguments arguments;  // the defaults, as for occluded()
+    rtcInitIntersectArguments(&arguments);
+    embree().intersect1(scene_, &query, &arguments);
+#else
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    embree().intersect1(scene_, &context, &query);
+#endif
+    Hit hit;
+    if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        hit.patch = static_cast<int32_t>(query.hit.primID);
+        hit.distance = query.ray.tfar;
+        hit.u = query.hit.u;
+        hit.v = query.hit.v;
+    }
+    return hit;
+}
+
+}  // namespace radiosity::hr

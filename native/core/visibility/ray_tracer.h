@@ -1,0 +1,58 @@
+/// @file ray_tracer.h
+/// @brief Is the segment between two points free of occluders? Rays traced by Embree against
+/// the patches (internal). Both sides of every patch occlude, as in the hemi-cube.
+#pragma once
+
+#include "common/types.h"
+
+#if RADIOSITY_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#elif RADIOSITY_EMBREE_MAJOR == 3
+#include <embree3/rtcore.h>
+#else
+#error "RADIOSITY_EMBREE_MAJOR must be 3 or 4 (set by native/core/CMakeLists.txt)"
+#endif
+
+#include <cstdint>
+#include <vector>
+
+namespace radiosity::hr {
+
+class Visibility {
+public:
+    /// `corners` per patch (4 ids, [3] = -1 for triangles) into `vertices`.
+    Visibility(const std::vector<Vec3>& vertices, const std::vector<std::array<int32_t, 4>>& corners, float scene_size);
+    ~Visibility();
+    Visibility(const Visibility&) = delete;
+    Visibility& operator=(const Visibility&) = delete;
+
+    /// True when nothing lies strictly between `from` and `to` (their own surfaces excluded by a
+    /// gap of 1e-6 of the scene size, at least 1e-4 of the segment). Thread-safe.
+    bool clear(const Vec3& from, const Vec3& to) const;
+    /// The same for the part of the segment between fractions `begin` and `end` of its length.
+    bool clear(const Vec3& from, const Vec3& to, float begin, float end) const;
+    /// True when nothing lies along `direction` (unit) from `from` out of the scene.
+    bool clear_towards(const Vec3& from, const Vec3& direction) const;
+
+    /// The first patch along `direction` (unit) from `from`, beyond `t_near`: its index (-1 for
+    /// none), distance and Embree's (u, v) on it: the point is corner 0 + u (1 - 0) + v (3 - 0)
+    /// on a quad's first triangle, mirrored on its second (u, v in [0, 1] over the quad); on a
+    /// triangle, corner 0 + u (1 - 0) + v (2 - 0). Thread-safe.
+    struct Hit {
+        int32_t patch = -1;
+        float distance = 0.0f;
+        float u = 0.0f, v = 0.0f;
+    };
+    Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
+    /// The gap left at a segment's ends (1e-6 of the scene size).
+    float gap() const { return gap_; }
+
+private:
+    bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    float gap_ = 0.0f, scene_size_ = 0.0f;
+};
+
+}  // namespace radiosity::hr
