@@ -361,15 +361,16 @@ def test_non_finite_light_is_an_error_naming_the_phase_and_the_object():
                                  {"method": "HIERARCHICAL", "element_size": 0.1})
     blocks = next(p for p in job.exported.parts if p.object_name == "Blocks")
     core = addon.native.core()
-    original = core.bake_hierarchical
+    original = core.bake
 
     def failing(*arguments, **keywords):
+        assert keywords["method"] == "hierarchical"
         error = core.NumericalError("non-finite light in phase 'solve' at input polygon %d"
                                     % (blocks.polygon_start + 5))
         error.phase, error.polygon = "solve", blocks.polygon_start + 5
         raise error
 
-    core.bake_hierarchical = failing
+    core.bake = failing
     try:
         job.solve()
     except addon.pipeline.BakeError as error:
@@ -377,7 +378,7 @@ def test_non_finite_light_is_an_error_naming_the_phase_and_the_object():
     else:
         raise AssertionError("non-finite light must fail the bake")
     finally:
-        core.bake_hierarchical = original
+        core.bake = original
     assert issubclass(core.NumericalError, RuntimeError)
 
 

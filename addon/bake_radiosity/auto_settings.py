@@ -187,24 +187,26 @@ def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
     return Resolution(MAX_RESOLUTION, rotations, reason)
 
 
-def choose(settings, exported, zonal=False):
-    """The Choice for `settings` (pipeline.settings_of) on `exported`; `zonal`: a bake with media,
-    whose core call takes no stability settings. With a preset and the final gather, the preset's
+def choose(settings, exported, media=()):
+    """The Choice for `settings` (pipeline.settings_of) on `exported`; `media`: the media's grids
+    as `_core.bake` takes them (a zonal bake, whose core call takes no stability settings). With a preset and the final gather, the preset's
     gathered solution, unless its form factors would not fit the memory budget (the hierarchy,
     which has no gather, then bakes the preset's own)."""
     size = scene_size(exported)
+    zonal = len(media) > 0
     preset = PRESETS.get(settings["quality"])
     # The gather sets the mesh's own corners: the hierarchy gathers at its corners itself, the zonal
     # bake has no gather, and Subdivided Copies show every element's corners, most not gathered.
     may_gather = settings["final_gather"] and not zonal and settings["target"] == "ORIGINAL"
     if preset is not None and may_gather:
-        choice = _choose(settings, exported, zonal, size, preset, gathered=True)
+        choice = _choose(settings, exported, media, size, preset, gathered=True)
         if choice.method != "hierarchical":
             return choice
-    return _choose(settings, exported, zonal, size, preset, gathered=False)
+    return _choose(settings, exported, media, size, preset, gathered=False)
 
 
-def _choose(settings, exported, zonal, size, preset, gathered):
+def _choose(settings, exported, media, size, preset, gathered):
+    zonal = len(media) > 0
     if preset is None:
         element_size = float(settings["element_size"])
         resolution = int(settings["hemicube_resolution"])
@@ -221,9 +223,11 @@ def _choose(settings, exported, zonal, size, preset, gathered):
 
     max_element_aspect = 0.0 if zonal else MAX_ELEMENT_ASPECT
     core = native.core()
-    layout = core.elements(exported.positions, exported.face_offsets, exported.corner_vertices,
-                           exported.reflectance, exported.emission, exported.material, element_size=element_size,
-                           max_element_aspect=max_element_aspect, front_only=exported.front_only)
+    # The elements a uniform method would solve, with the media where there are any: plan() builds
+    # them as bake() will.
+    media_settings = {"media": list(media)} if zonal else {"max_element_aspect": max_element_aspect}
+    layout = core.plan(*exported.scene_arrays(), front_only=exported.front_only, element_size=element_size,
+                       **media_settings)
     elements = int(layout["elements"])
     if preset is None:
         resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only

@@ -53,6 +53,11 @@ class ExportedScene:
     def polygon_count(self):
         return len(self.face_offsets) - 1
 
+    def scene_arrays(self):
+        """The arrays `_core.plan` and `_core.bake` take first, in their order."""
+        return (self.positions, self.face_offsets, self.corner_vertices, self.reflectance, self.emission,
+                self.material)
+
 
 def export_scene(depsgraph, view_layer):
     builder = _Builder(preview.materials_behind(depsgraph.scene))

@@ -12,7 +12,7 @@ from . import energy
 
 
 def balance(result):
-    """EnergyBalance of a `_core.bake_with_media` result: surfaces and zones together."""
+    """EnergyBalance of a `_core.bake` result with media: surfaces and zones together."""
     surfaces = energy.balance(result)
     weight = result["zone_weight"].astype(np.float64)
     emitted = math.pi * float((weight * result["zone_emitted"]).sum()) / 3.0

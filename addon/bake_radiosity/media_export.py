@@ -21,7 +21,7 @@ class Medium:
     """One medium: the core's input dict and where it came from."""
     object_name: str
     material_name: str
-    grid: dict              # origin, voxel_size, extinction, albedo, emission as bake_with_media takes them
+    grid: dict              # origin, voxel_size, extinction, albedo, emission as `_core.bake` takes them (media=)
     input_file: str = ""    # the user's OpenVDB file (Volume objects), never written over
 
 

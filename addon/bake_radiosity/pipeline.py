@@ -2,7 +2,6 @@
 write back (needs bpy). `bake(scene, **overrides)` runs all three; the operator splits them."""
 
 import contextlib
-import functools
 import math
 import time
 
@@ -94,7 +93,7 @@ class BakeJob:
                             "is visible in renders")
         announce("choosing settings for %d faces" % self.exported.polygon_count)
         try:
-            self.choice = auto_settings.choose(self.settings, self.exported, zonal=bool(self.media.media))
+            self.choice = auto_settings.choose(self.settings, self.exported, [m.grid for m in self.media.media])
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
@@ -113,7 +112,7 @@ class BakeJob:
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
         with core_errors_as_bake_errors():
             try:
-                self.result = self._run_core(self.method, int(self.settings["max_iterations"]), progress)
+                self.result = self._run_core(progress)
             except native.core().NumericalError as error:
                 # Light that is not a number is the bake's fault, never a result to write: say where.
                 raise BakeError("The bake failed: light stopped being a number in its '%s' phase at %s. Nothing "
@@ -135,36 +134,33 @@ class BakeJob:
         """(element_vertices, element_corners, element_back) in the order progress reports radiance."""
         e = self.exported
         with core_errors_as_bake_errors():
-            layout = native.core().elements(e.positions, e.face_offsets, e.corner_vertices, e.reflectance,
-                                            e.emission, e.material, element_size=self.choice.element_size,
-                                            max_element_aspect=self.choice.max_element_aspect,
-                                            front_only=e.front_only)
+            layout = native.core().plan(*e.scene_arrays(), front_only=e.front_only, **self.core_settings())
         return layout["element_vertices"], layout["element_corners"], layout["element_back"]
 
-    def _run_core(self, method, max_iterations, progress):
+    def core_settings(self):
+        """The settings `_core.plan` and `_core.bake` take for this bake."""
         e, c = self.exported, self.choice
-        if method == "hierarchical":
-            return native.core().bake_hierarchical(
-                e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
-                element_size=c.element_size, refine_tolerance=c.refine_tolerance, tolerance=c.tolerance,
-                max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-                lights=e.lights, max_bytes=c.budget_bytes, progress=progress, front_only=e.front_only,
-                world=self.world.radiance if self.world is not None else None)
-        bake = functools.partial(native.core().bake, **c.stability_keywords())
-        if self.media.media:  # the zonal bake: surfaces and media in one system
-            over_relaxation = ({"over_relaxation": auto_settings.AUTOMATIC_OVER_RELAXATION}
-                               if method == "gauss_seidel" else {})
-            bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media],
-                                     **over_relaxation)
+        settings = {"element_size": c.element_size, "resolution": c.resolution, "method": c.method,
+                    "tolerance": c.tolerance, "max_iterations": int(self.settings["max_iterations"]),
+                    "hard_edge_angle": float(self.settings["hard_edge_angle"]), "lights": e.lights,
+                    "matrix_budget_bytes": c.budget_bytes,
+                    "ambient": c.method == "progressive"}  # brightens only the preview, never the result
+        if self.world_baked():
+            settings["world"] = self.world.radiance
+        if c.method == "hierarchical":
+            settings.update(refine_tolerance=c.refine_tolerance, max_bytes=c.budget_bytes)
+        elif self.media.media:  # the zonal bake: surfaces and media in one system
+            settings["media"] = [m.grid for m in self.media.media]
+            if c.method == "gauss_seidel":
+                settings["over_relaxation"] = auto_settings.AUTOMATIC_OVER_RELAXATION
         else:
-            bake = functools.partial(bake, world=self.world.radiance if self.world is not None else None)
-        return bake(
-            e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
-            element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,
-            max_iterations=max_iterations, hard_edge_angle=float(self.settings["hard_edge_angle"]),
-            lights=e.lights, matrix_budget_bytes=c.budget_bytes, progress=progress,
-            front_only=e.front_only,
-            ambient=method == "progressive")  # brightens only the preview, never the result
+            settings.update(c.stability_keywords())
+        return settings
+
+    def _run_core(self, progress):
+        e = self.exported
+        return native.core().bake(*e.scene_arrays(), front_only=e.front_only, progress=progress,
+                                  **self.core_settings())
 
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""

@@ -1,6 +1,6 @@
 /// @file bake_keywords.h
-/// @brief The keyword settings `_core.bake` and `_core.bake_with_media` share: checked into
-/// BakeSettings, the progress reporter they both use, and the surface result as a dict.
+/// @brief What `_core.plan` and `_core.bake` share: their keyword settings checked into
+/// BakeSettings, the progress reporter, and the result as a dict.
 #pragma once
 
 #include "progress.h"
@@ -8,14 +8,11 @@
 
 #include "bake/bake.h"
 
-#include <string>
-
 namespace radiosity::python {
 
-/// BakeSettings from the keyword values; ValueError naming the keyword that is out of range.
-BakeSettings bake_settings(float element_size, int resolution, const std::string& method, double tolerance,
-                           int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
-                           std::size_t matrix_budget_bytes);
+/// BakeSettings from the keyword settings (see `_core.bake`'s docstring for each); TypeError for
+/// a keyword that is not a setting, ValueError naming one out of range or of the wrong type.
+BakeSettings bake_settings(const py::kwargs& keywords);
 
 /// The `progress` keyword as the core's ProgressFn: a ProgressMonitor reports without the GIL,
 /// anything else is called as a Python callback (None: no reports).
@@ -32,12 +29,8 @@ private:
     ProgressFn function_;
 };
 
-/// bake()'s result keys (elements, corner colours, solve statistics, seconds) added to `out`.
-void add_bake_result(const BakeResult& result, py::dict& out);
-
-/// The per-element solution keys both surface bakes return: corner colours (input and element
-/// corners), element radiance, and the emission and reflectance the solve used.
-void add_surface_solution(const Elements& elements, const std::vector<Rgb>& radiance, const CornerColors& colors,
-                          py::dict& out);
+/// bake()'s result as the dict `_core.bake` returns: elements, corner colours, solve statistics,
+/// seconds per phase, and the hierarchy's counts and the media's zones and grids where they apply.
+py::dict bake_result(const BakeResult& result);
 
 }  // namespace radiosity::python

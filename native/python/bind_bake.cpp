@@ -1,5 +1,6 @@
 /// @file bind_bake.cpp
-/// @brief `_core.bake` (flat numpy arrays in, corner colours and statistics out) and `_core.elements`.
+/// @brief `_core.plan` and `_core.bake` (flat numpy arrays and keyword settings in; elements, or corner
+/// colours and statistics, out) and the core's memory and resolution models.
 #include "arrays.h"
 #include "bake_keywords.h"
 #include "bindings.h"
@@ -17,31 +18,11 @@ namespace {
 py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                     float element_size, int resolution, const std::string& method, double tolerance,
-                     int max_iterations, float hard_edge_angle, bool ambient, const py::list& lights,
-                     std::size_t matrix_budget_bytes,
-                     const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
-                     std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
-                     int gather_shadow_rays, float direct_emitter_area, const py::object& world, int world_samples,
-                     int world_point_samples, const std::optional<Array<uint8_t>>& front_only) {
+                     const std::optional<Array<uint8_t>>& front_only, const py::object& progress,
+                     const py::kwargs& keywords) {
     const SceneInput input =
         scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
-    BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
-                                          hard_edge_angle, ambient, lights, matrix_budget_bytes);
-    // The stability settings of docs/stability.md; the core checks their ranges (ValueError).
-    settings.near_field.enabled = near_field;
-    settings.solve.over_relaxation = over_relaxation;
-    settings.limits.max_aspect = max_element_aspect;
-    settings.limits.max_elements = max_elements;
-    settings.hemicube_rotations = hemicube_rotations;
-    if (gather_rays < 1) throw InputError("gather_rays must be >= 1");
-    if (gather_shadow_rays < 1) throw InputError("gather_shadow_rays must be >= 1");
-    settings.final_gather.enabled = final_gather;
-    settings.final_gather.rays = gather_rays;
-    settings.final_gather.shadow_rays = gather_shadow_rays;
-    if (!(direct_emitter_area >= 0.0f)) throw InputError("direct_emitter_area must be >= 0");
-    settings.direct_emitter_area = direct_emitter_area;
-    settings.world = parse_world(world, world_samples, world_point_samples);
+    const BakeSettings settings = bake_settings(keywords);
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
@@ -51,27 +32,25 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
         reporter.rethrow_if_failed();
         throw;
     }
-    py::dict out;
-    add_bake_result(result, out);
-    return out;
+    return bake_result(result);
 }
 
-py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
-                        const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
-                        const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                        float element_size, float max_element_aspect, const std::optional<Array<uint8_t>>& front_only) {
+py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
+                     const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
+                     const Array<float>& emission, const std::optional<Array<int32_t>>& material,
+                     const std::optional<Array<uint8_t>>& front_only, const py::kwargs& keywords) {
     const SceneInput input =
         scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
-    if (!(element_size >= 0.0f)) throw InputError("element_size must be >= 0");
-    BuildResult build;
+    const BakeSettings settings = bake_settings(keywords);
+    BakePlan planned;
     {
         py::gil_scoped_release release;
-        ElementLimits limits = BakeSettings().limits;  // with bake()'s contact cuts: the same mesh
-        limits.max_aspect = max_element_aspect;
-        build = build_elements(input, element_size, limits);
+        planned = plan(input, settings);
     }
     py::dict out;
-    add_elements(build, out);
+    add_elements(planned.build, out);
+    out["matrix_bytes_bound"] = planned.matrix_bytes_bound;
+    out["matrix_stored"] = planned.matrix_stored;
     return out;
 }
 
@@ -108,24 +87,32 @@ double resolved_area_arrays(const Array<float>& element_vertices, int resolution
 void bind_bake(py::module_& m) {
     using namespace pybind11::literals;
     m.def("bake", &bake_arrays,
-          "Bakes radiosity for a polygon soup given as flat arrays; see the add-on's export for the layout.",
+          "Bakes radiosity for a polygon soup given as flat arrays (see the add-on's export for the layout) by the "
+          "pipeline the settings choose, and returns one dict whatever the method. Settings, all keywords: "
+          "element_size (the longest edge of the finest elements, metres; 0: one element per polygon, uniform "
+          "methods only), method ('gauss_seidel', 'jacobi', 'progressive' or 'hierarchical'), resolution (hemi-cube "
+          "cells per face edge, even), tolerance, max_iterations, hard_edge_angle, ambient, lights (list of dicts), "
+          "world (None or an equirectangular (h, w, 3) map), world_samples, world_point_samples, "
+          "matrix_budget_bytes; the stability settings near_field, over_relaxation (0: the core's), "
+          "max_element_aspect, max_elements, hemicube_rotations, direct_emitter_area; the final gather: "
+          "final_gather, gather_rays, gather_shadow_rays; the hierarchy: refine_tolerance, max_bytes; media: media "
+          "([{origin, voxel_size, extinction, albedo, emission (nz, ny, nx, 3)}]), zone_resolution, "
+          "grid_subdivision, merge_uniform_zones. The dict: the elements (as plan() gives them; the hierarchy's "
+          "leaves), corner_radiance, element_corner_radiance, element_radiance, element_emission, "
+          "element_reflectance, corner_light and element_corner_light (uniform methods), iterations, shots, residual, "
+          "residual_history, converged, matrix_stored, matrix_nonzeros, matrix_bytes, seconds per phase, "
+          "final_gather and direct_emitters when they ran, hierarchy (its counts, or None), and with media zones, "
+          "zones_before_merge, zone_radiance, zone_medium, zone_weight (4 K_t V), zone_emitted, zone_albedo, "
+          "zone_incident and per medium grids [{origin, voxel_size, density: K_t, emission: K_t J}].",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "resolution"_a = 128,
-          "method"_a = "gauss_seidel", "tolerance"_a = 1e-4, "max_iterations"_a = 1000,
-          "hard_edge_angle"_a = 0.5235988f, "ambient"_a = false, "lights"_a = py::list(),
-          "matrix_budget_bytes"_a = BakeSettings().matrix_budget_bytes,
-          "progress"_a = py::none(), "near_field"_a = false, "over_relaxation"_a = 1.0,
-          "max_element_aspect"_a = 0.0f, "max_elements"_a = ElementLimits().max_elements, "hemicube_rotations"_a = 1,
-          "final_gather"_a = false, "gather_rays"_a = FinalGatherSettings().rays,
-          "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays,
-          "direct_emitter_area"_a = BakeSettings().direct_emitter_area, "world"_a = py::none(),
-          "world_samples"_a = WorldLight().samples, "world_point_samples"_a = WorldLight().point_samples,
-          "front_only"_a = py::none());
-    m.def("elements", &element_arrays,
-          "The elements bake() would solve for (same order as its progress radiance), without solving.",
+          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "progress"_a = py::none());
+    m.def("plan", &plan_arrays,
+          "What bake() with the same arrays and settings will solve, without solving: its elements (element_vertices, "
+          "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
+          "the hierarchy's patches), matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
+          "matrix_budget_bytes and are stored, else rendered on demand). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "max_element_aspect"_a = 0.0f,
-          "front_only"_a = py::none());
+          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",

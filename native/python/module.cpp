@@ -9,7 +9,7 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "Bake Radiosity's native core: hemi-cube form factors and radiosity solvers.";
-    // The core's error vocabulary (radiosity/types.h). Every failure is also a `_core.Error`, so a
+    // The core's error vocabulary (common/types.h). Every failure is also a `_core.Error`, so a
     // caller reports any bake that cannot run in one place, and keeps the built-in base its
     // meaning has. Translators are tried newest first: BudgetError before InputError.
     auto error = py::reinterpret_steal<py::object>(PyErr_NewException("_core.Error", PyExc_Exception, nullptr));
@@ -34,8 +34,7 @@ PYBIND11_MODULE(_core, m) {
         }
     });
     radiosity::python::bind_bake(m);
-    radiosity::python::bind_hierarchy(m);
     radiosity::python::bind_progress_monitor(m);
     radiosity::python::bind_vdb(m);
-    radiosity::python::bind_zonal(m);
+    radiosity::python::bind_media(m);
 }

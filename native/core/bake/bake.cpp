@@ -1,6 +1,6 @@
 /// @file bake.cpp
-/// @brief The surface bake pipeline: elements, form factors (stored or on demand), solve, corners.
-#include "bake/bake.h"
+/// @brief The uniform bake pipeline: elements, form factors (stored or on demand), solve, corners.
+#include "bake/pipelines.h"
 
 #include "output/final_gather.h"
 #include "transport/small_emitters.h"
@@ -37,11 +37,18 @@ std::size_t matrix_bytes_bound(std::size_t element_count, int resolution) {
     return element_count * std::min(element_count, 3 * N * N) * (sizeof(float) + sizeof(int32_t));
 }
 
-BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+namespace detail {
+
+bool stores_matrix(std::size_t element_count, const BakeSettings& settings) {
+    const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
+    return matrix_bytes_bound(element_count, settings.resolution) <= settings.matrix_budget_bytes / copies;
+}
+
+BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     BakeResult result;
 
     auto start = Clock::now();
-    result.build = build_elements(input, settings.element_size, settings.limits);
+    result.build = uniform_elements(input, settings);
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
@@ -79,13 +86,8 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         result.seconds_direct_emitters = seconds_since(start);
     }
 
-    // Stored, F is computed in parallel and read cheaply by every sweep or shot; progressive
-    // refinement also holds F^T to shoot exact columns. Beyond the budget, rows are rendered on
-    // demand (memory O(n)).
-    const bool progressive = settings.solve.method == Method::Progressive;
-    const std::size_t copies = progressive ? 2 : 1;
-    result.matrix_stored = matrix_bytes_bound(elements.size(), settings.resolution) <=
-                           settings.matrix_budget_bytes / copies;
+    const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
+    result.matrix_stored = stores_matrix(elements.size(), settings);
     RowSettings rows;
     rows.resolution = settings.resolution;
     rows.rotations = settings.hemicube_rotations;
@@ -131,4 +133,5 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     return result;
 }
 
+}  // namespace detail
 }  // namespace radiosity

@@ -1,7 +1,18 @@
 /// @file bake.h
-/// @brief The whole surface bake: elements, form factors, solve, corner colours.
+/// @brief The bake, whatever the method and with or without media: plan() says what it will solve,
+/// bake() solves it and returns one result shape.
 ///
-/// Which system is solved depends on whether F fits `matrix_budget_bytes`:
+/// Three pipelines sit behind bake(), chosen by the settings:
+///  - uniform (the default; uniform_bake.h): elements of at most `element_size`, hemi-cube form
+///    factors, Gauss-Seidel, Jacobi or progressive refinement, interpolation, the final gather;
+///  - hierarchical (`hierarchical.enabled`; hierarchy/hierarchy.h): elements refined where the
+///    light needs them, down to `element_size`, clusters linked far off, visibility by rays;
+///  - with media (`media.media` not empty; media_bake.h): the uniform elements and the media's
+///    zones in one zonal system.
+/// `element_size` means the same in each: the longest edge of the finest elements the bake
+/// resolves (uniform: every element; hierarchical: where refinement stops).
+///
+/// In the uniform and media bakes, which system is solved depends on whether F fits `matrix_budget_bytes`:
 ///  - stored (the budget holds F; progressive refinement needs F and F^T, twice that): every
 ///    method solves L = E + rho F L exactly; progressive refinement shoots columns of F.
 ///  - on demand (beyond the budget): rows are rendered one hemi-cube at a time, memory O(n).
@@ -11,19 +22,49 @@
 ///    of up to some percent next to shared edges, e.g. in a closed box furnace.
 #pragma once
 
+#include "hierarchy/hierarchy.h"
+#include "media/volume.h"
+#include "media/zonal.h"
+#include "media/zonal_grids.h"
 #include "output/final_gather_settings.h"
 #include "output/interpolation.h"
-#include "transport/lights.h"
 #include "solve/solver.h"
+#include "transport/lights.h"
 #include "transport/world.h"
+
+#include <optional>
+#include <vector>
 
 namespace radiosity {
 
+/// Hierarchical radiosity instead of uniform elements (hierarchy/hierarchy.h). It takes
+/// BakeSettings' element_size (the finest elements, > 0), solve tolerance and sweeps, hard edge
+/// angle, element limits, lamps and world; no hemi-cube, so no resolution, near field or gather.
+struct HierarchicalSettings {
+    bool enabled = false;
+    double refine_tolerance = HierarchySettings().refine_tolerance;  ///< error per link, share of the mean radiance
+    std::size_t max_bytes = 0;  ///< cap on the nodes' and links' bytes (0: none)
+};
+
+/// Uniform regions of a medium merge into octree blocks of up to 2^this voxels per edge
+/// (build_zones): the exchange factors cost zones squared. 0 keeps one zone per voxel.
+constexpr int kDefaultMaxBlockLevel = 1;
+
+/// Participating media solved with the surfaces by the zonal method (media_bake.h).
+struct MediaSettings {
+    std::vector<Medium> media;     ///< none: a surface bake
+    int zone_resolution = 32;      ///< the zones' full cubes: cells per face edge (even, >= 8)
+    int grid_subdivision = 3;      ///< output grid cells per voxel edge
+    int max_block_level = kDefaultMaxBlockLevel;
+};
+
 struct BakeSettings {
-    float element_size = 0.0f;       ///< max element edge in metres, 0 = one element per polygon
+    /// The longest edge of the finest elements, metres (see the top of this file); 0 = one element
+    /// per polygon (uniform and media bakes only).
+    float element_size = 0.0f;
     int resolution = 128;            ///< hemi-cube cells per full face edge
     SolveSettings solve;
-    float hard_edge_angle = 0.5236f; ///< radians (30 degrees)
+    float hard_edge_angle = 0.5235988f; ///< radians (30 degrees)
     /// Element cap, sliver split, intersection and contact cuts (docs/stability.md).
     ElementLimits limits = ElementLimits().with_contacts();
     /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
@@ -46,6 +87,21 @@ struct BakeSettings {
     /// need a resolution that resolves them (small_emitters.h). Their own emission is left out of
     /// the solve and added back to their radiance after it.
     float direct_emitter_area = 0.0f;
+    /// Hierarchical radiosity instead of uniform elements (off by default).
+    HierarchicalSettings hierarchical;
+    /// Media solved with the surfaces (none by default).
+    MediaSettings media;
+};
+
+/// What a bake with media adds: the zones and their light, and the grids a renderer shows.
+struct MediaResult {
+    Zones zones;                     ///< after merging; zones.block[k]^3 voxels each
+    std::vector<Rgb> zone_radiance;  ///< L_k per zone
+    /// H_k = sum_y R_ky L_y: the mean radiance a zone receives, so a caller can count the power it
+    /// absorbs, pi (4 K_t V) (1 - Omega) H_k (its radiance alone cannot say when Omega = 0).
+    std::vector<Rgb> zone_incident;
+    std::vector<MediumGrids> grids;  ///< per medium, at MediaSettings::grid_subdivision
+    double seconds_zones = 0.0;
 };
 
 struct BakeResult {
@@ -69,13 +125,32 @@ struct BakeResult {
     std::size_t buried_points = 0;      ///< output vertices inside other geometry: interpolated colour kept
     std::size_t direct_emitters = 0;    ///< emitting elements lit directly (direct_emitter_area)
     double seconds_direct_emitters = 0; ///< their direct light on every element
+    /// Hierarchical bakes: the tree's counts. `build` is then the output mesh (the leaves), `solve`
+    /// its radiance, and the form factors' seconds are the links'.
+    std::optional<HierarchyStats> hierarchy;
+    std::optional<MediaResult> media;  ///< bakes with media; `build` and `solve` hold the surfaces
+};
+
+/// What bake() will solve, before it solves: the same elements, and for the uniform methods the
+/// form factors' memory bound and whether they are stored (else rendered on demand).
+struct BakePlan {
+    /// The elements as bake() builds them (with the same cuts); the hierarchy's are its patches,
+    /// one a polygon, which it refines.
+    BuildResult build;
+    std::size_t matrix_bytes_bound = 0;  ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
+    bool matrix_stored = false;          ///< uniform bakes: the bound fits the budget (media bakes always store)
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at
 /// resolution N: N^2 on top, four sides of N^2 / 2), 8 bytes each (float value, int32 column).
 std::size_t matrix_bytes_bound(std::size_t element_count, int resolution);
 
-/// Stores F when it fits the budget, else renders rows on demand (see the top of this file).
+/// The elements, memory bound and storage bake() will use with the same input and settings.
+/// Throws InputError as bake() would for the input and the settings it checks.
+BakePlan plan(const SceneInput& input, const BakeSettings& settings);
+
+/// Bakes by the pipeline the settings choose (see the top of this file). Progress phases and
+/// errors as each pipeline's; throws Cancelled.
 BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
 
 }  // namespace radiosity

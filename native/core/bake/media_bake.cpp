@@ -2,6 +2,7 @@
 /// @brief bake_with_media(): the surface pipeline with zones in the system.
 #include "bake/media_bake.h"
 
+#include "bake/pipelines.h"
 #include "media/zonal_solver.h"
 
 #include <chrono>
@@ -28,10 +29,7 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
         throw InputError("point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
 
     start = Clock::now();
-    bake.build = build_elements(input, settings.element_size);
-    // The zonal exchange has no direct path for lamps (small_emitters.h): their quads stay in the
-    // factors, lit and blocking like any emitter (front-only still).
-    bake.build.elements.lamp.clear();
+    bake.build = detail::media_elements(input, settings);
     const Elements& elements = bake.build.elements;
     bake.seconds_elements = seconds_since(start);
 

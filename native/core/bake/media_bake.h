@@ -1,5 +1,5 @@
 /// @file media_bake.h
-/// @brief The bake with participating media: elements, zones, exchange factors, the coupled solve,
+/// @brief The bake with participating media (internal: bake() calls it when there are media): elements, zones, exchange factors, the coupled solve,
 /// corner colours and the grids a renderer needs to show the media.
 ///
 /// Output grids per medium (zonal_grids.h): `density` = K_t and `emission` = K_t J on a lattice
@@ -13,26 +13,13 @@
 #pragma once
 
 #include "bake/bake.h"
-#include "media/zonal.h"
-#include "media/zonal_grids.h"
 
 namespace radiosity {
 
-/// Uniform regions merge into octree blocks of up to 2^this voxels per edge (build_zones): the
-/// exchange factors cost zones squared, and a block's radiance is spread back over its voxels as a
-/// linear field (voxel_radiance). 0 keeps one zone per voxel. Chosen in docs/volumes.md.
-constexpr int kDefaultMaxBlockLevel = 1;
-
-struct ZonalBakeResult {
-    /// As bake() returns it; solve.radiance and colors hold the elements only.
+/// The surfaces as bake() returns them (solve.radiance and colors hold the elements only) and
+/// the media's zones, their light and grids.
+struct ZonalBakeResult : MediaResult {
     BakeResult surfaces;
-    Zones zones;                     ///< after merging; zones.block[k]^3 voxels each
-    std::vector<Rgb> zone_radiance;  ///< L_k per zone
-    /// H_k = sum_y R_ky L_y: the mean radiance a zone receives, so a caller can count the power it
-    /// absorbs, pi (4 K_t V) (1 - Omega) H_k (its radiance alone cannot say when Omega = 0).
-    std::vector<Rgb> zone_incident;
-    std::vector<MediumGrids> grids;  ///< per medium, at grid_subdivision (medium_grids())
-    double seconds_zones = 0.0;
 };
 
 /// bake() with media: the elements' hemi-cubes (settings.resolution) and the zones' full cubes

@@ -67,15 +67,20 @@ void check(const HierarchySettings& s) {
 
 }  // namespace
 
+BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings) {
+    BuildResult patches = build_elements(input, 0.0f, settings.limits);
+    // The hierarchy's visibility is its own (visibility/ray_tracer): lamps' quads block light there.
+    patches.elements.lamp.clear();
+    return patches;
+}
+
 HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings, const ProgressFn& progress) {
     check(settings);
     HierarchyResult result;
     // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
     auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };
     auto start = Clock::now();
-    result.build = build_elements(input, 0.0f, settings.limits);
-    // The hierarchy's visibility is its own (visibility/ray_tracer): lamps' quads block light there.
-    result.build.elements.lamp.clear();
+    result.build = hierarchy_patches(input, settings);
     // The world's first reflection per patch (its mean over the patch) is emitted light to the
     // solve, as bake() counts it; the output shows it as it is at each corner instead.
     std::vector<Rgb> world_light;

@@ -56,7 +56,7 @@ struct HierarchySettings {
     double tolerance = 1e-4;         ///< relative residual of the last round's solve
     int max_iterations = 1000;       ///< Jacobi sweeps per round
     int max_rounds = 12;             ///< refinement rounds
-    float hard_edge_angle = 0.5236f; ///< radians, for the corner colours
+    float hard_edge_angle = 0.5235988f; ///< radians, for the corner colours
     /// Cap on patches (leaves are capped by max_elements too); contact lines are cut.
     ElementLimits limits = ElementLimits().with_contacts();
     /// Cap on the bytes of nodes and links (HierarchyStats::bytes; the process peaks at about
@@ -95,6 +95,10 @@ struct HierarchyResult {
     std::vector<double> residual_history;
     double seconds_elements = 0, seconds_links = 0, seconds_solve = 0, seconds_interpolate = 0;
 };
+
+/// The patches bake_hierarchical() starts from: one element per polygon (n-gons: convex pieces),
+/// cut along intersection and contact lines; lamps' quads block light like any patch.
+BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings);
 
 /// Bakes `input` hierarchically. Progress phases "elements" (set-up), "links" (refinement, per
 /// round), "solve" and "output" (the leaf mesh);

@@ -119,7 +119,7 @@ class OutputShapesTest(unittest.TestCase):
 
     def test_elements_match_the_bake_without_solving(self):
         arrays = box_arrays()
-        layout = _core.elements(*arrays, element_size=0.3)
+        layout = _core.plan(*arrays, element_size=0.3)
         result = _core.bake(*arrays, element_size=0.3, resolution=16)
         for key in ("element_vertices", "element_corners", "element_polygon", "element_area", "element_back"):
             np.testing.assert_array_equal(layout[key], result[key], err_msg=key)
@@ -130,7 +130,7 @@ class OutputShapesTest(unittest.TestCase):
         """A block standing on a floor: the floor is cut along the block's footprint in bake(), and
         elements() must return that same mesh (the automatic settings and the preview read it)."""
         arrays = block_on_floor_arrays()
-        layout = _core.elements(*arrays, element_size=0.5)
+        layout = _core.plan(*arrays, element_size=0.5)
         result = _core.bake(*arrays, element_size=0.5, resolution=16)
         self.assertGreater(result["elements"], 23)  # without the cut: 16 floor, 6 block, the top's back side
         for key in ("element_vertices", "element_corners", "element_polygon", "element_area"):
@@ -236,8 +236,8 @@ class LightsTest(unittest.TestCase):
 
     def test_uniform_world_on_a_lone_floor_gives_rho_w(self):
         rho, sky = 0.5, np.array([0.3, 0.6, 1.2], dtype=np.float32)
-        for bake in (_core.bake, _core.bake_hierarchical):
-            result = bake(*self.floor(rho), element_size=0.25, world=sky.reshape(1, 1, 3))
+        for method in ("gauss_seidel", "hierarchical"):
+            result = _core.bake(*self.floor(rho), element_size=0.25, world=sky.reshape(1, 1, 3), method=method)
             np.testing.assert_allclose(result["corner_radiance"], np.tile(rho * sky, (4, 1)), rtol=1e-6)
 
     def test_bad_world_map_is_a_value_error(self):

@@ -102,7 +102,7 @@ class StabilitySettingsTest(unittest.TestCase):
         v = np.array([[0, 0, 0], [1, 0, 0], [1, 0.01, 0], [0, 0.01, 0]], dtype=np.float32)
         strip = (v, np.array([0, 4], dtype=np.int32), np.arange(4, dtype=np.int32),
                  np.full((1, 3), 0.5, dtype=np.float32), np.zeros((1, 3), dtype=np.float32))
-        self.assertEqual(_core.elements(*strip)["elements"], 1)
+        self.assertEqual(_core.plan(*strip)["elements"], 1)
         self.assertEqual(_core.bake(*strip, resolution=16, max_element_aspect=4.0)["elements"], 25)
 
 
@@ -116,7 +116,7 @@ class RecommendedResolutionTest(unittest.TestCase):
         _, offsets, corners, reflectance, emission = box_arrays()
         v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]],
                      dtype=np.float32)
-        return _core.elements(v, offsets, corners, reflectance, emission, element_size=element_size)
+        return _core.plan(v, offsets, corners, reflectance, emission, element_size=element_size)
 
     def test_unit_cube_at_10_cm_and_3_cm(self):
         d = 0.5 * math.sqrt(3.0)

@@ -1,4 +1,4 @@
-"""`_core.bake_with_media` and `_core.principled_volume` over the binding, against closed forms:
+"""`_core.bake` with media and `_core.principled_volume` over the binding, against closed forms:
 Kirchhoff's isothermal enclosure, a scattering medium inside black emitting walls, and the
 Principled Volume formula as Cycles' svm_node_principled_volume writes it."""
 import unittest
@@ -19,8 +19,8 @@ def fog(L0_emission, extinction, albedo, size=4, voxel=0.25):
 
 
 def bake(arrays, media, **settings):
-    return _core.bake_with_media(*arrays, element_size=0.5, resolution=32, tolerance=1e-7,
-                                 media=media, zone_resolution=16, **settings)
+    return _core.bake(*arrays, element_size=0.5, resolution=32, tolerance=1e-7,
+                      media=media, zone_resolution=16, **settings)
 
 
 class IsothermalTest(unittest.TestCase):

@@ -1,0 +1,107 @@
+/// @file plan_and_bake.cpp
+/// @brief plan() and bake(): the pipeline the settings choose, and its result in one shape.
+#include "bake/media_bake.h"
+#include "bake/pipelines.h"
+
+#include <utility>
+
+namespace radiosity {
+
+namespace {
+
+bool with_media(const BakeSettings& settings) { return !settings.media.media.empty(); }
+
+void check(const BakeSettings& settings) {
+    if (settings.hierarchical.enabled && with_media(settings))
+        throw InputError("the hierarchical method does not bake media (fog, smoke) yet: use a uniform method");
+    if (settings.hierarchical.enabled && !(settings.hierarchical.refine_tolerance > 0.0))
+        throw InputError("refine_tolerance must be positive");
+    if (settings.hierarchical.enabled && !(settings.element_size > 0.0f))
+        throw InputError("element_size (the hierarchy's min_element_size: its finest elements) must be a positive "
+                         "number of metres");
+}
+
+/// The hierarchy's result in bake()'s shape: the leaves are the elements.
+BakeResult as_bake_result(HierarchyResult&& hierarchy) {
+    BakeResult result;
+    result.build = BuildResult{std::move(hierarchy.output), std::move(hierarchy.build.skipped)};
+    result.solve.radiance = std::move(hierarchy.output_radiance);
+    result.solve.iterations = hierarchy.stats.iterations;
+    result.solve.residual = hierarchy.residual;
+    result.solve.residual_history = std::move(hierarchy.residual_history);
+    result.solve.converged = hierarchy.converged;
+    result.solve.seconds = hierarchy.seconds_solve;
+    result.colors = std::move(hierarchy.colors);
+    result.matrix_bytes = hierarchy.stats.bytes;
+    result.seconds_elements = hierarchy.seconds_elements;
+    result.seconds_form_factors = hierarchy.seconds_links;  // lamps are link sources: no lamp phase
+    result.seconds_solve = hierarchy.seconds_solve;
+    result.seconds_interpolate = hierarchy.seconds_interpolate;
+    result.hierarchy = hierarchy.stats;
+    return result;
+}
+
+BakeResult as_bake_result(ZonalBakeResult&& zonal) {
+    BakeResult result = std::move(zonal.surfaces);
+    result.media = static_cast<MediaResult&&>(std::move(zonal));
+    return result;
+}
+
+}  // namespace
+
+namespace detail {
+
+BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings) {
+    return build_elements(input, settings.element_size, settings.limits);
+}
+
+BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {
+    BuildResult build = build_elements(input, settings.element_size);
+    build.elements.lamp.clear();
+    return build;
+}
+
+HierarchySettings hierarchy_settings(const BakeSettings& settings) {
+    HierarchySettings h;
+    h.min_element_size = settings.element_size;
+    h.refine_tolerance = settings.hierarchical.refine_tolerance;
+    h.max_bytes = settings.hierarchical.max_bytes;
+    h.tolerance = settings.solve.tolerance;
+    h.max_iterations = settings.solve.max_iterations;
+    h.hard_edge_angle = settings.hard_edge_angle;
+    h.limits = settings.limits;
+    h.lights = settings.lights;
+    h.world = settings.world;
+    return h;
+}
+
+}  // namespace detail
+
+BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
+    check(settings);
+    BakePlan plan;
+    if (settings.hierarchical.enabled) {
+        plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
+        return plan;
+    }
+    plan.build = with_media(settings) ? detail::media_elements(input, settings)
+                                      : detail::uniform_elements(input, settings);
+    plan.matrix_bytes_bound = matrix_bytes_bound(plan.build.elements.size(), settings.resolution);
+    // The media bake always stores its matrix (or refuses to bake beyond the budget).
+    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.build.elements.size(), settings);
+    return plan;
+}
+
+BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+    check(settings);
+    if (settings.hierarchical.enabled)
+        return as_bake_result(bake_hierarchical(input, detail::hierarchy_settings(settings), progress));
+    if (with_media(settings)) {
+        const MediaSettings& m = settings.media;
+        return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress,
+                                              m.grid_subdivision, m.max_block_level));
+    }
+    return detail::bake_uniform(input, settings, progress);
+}
+
+}  // namespace radiosity
