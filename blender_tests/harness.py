@@ -140,7 +140,7 @@ def corner_positions(mesh):
 @contextlib.contextmanager
 def patched_setting(name, value):
     """The add-on's auto_settings.<name> set to `value` inside the block."""
-    auto_settings = sys.modules[MODULE + ".auto_settings"]
+    auto_settings = sys.modules[MODULE + ".engine.auto_settings"]
     kept = getattr(auto_settings, name)
     setattr(auto_settings, name, value)
     try:

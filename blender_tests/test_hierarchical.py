@@ -360,7 +360,7 @@ def test_non_finite_light_is_an_error_naming_the_phase_and_the_object():
     job = addon.pipeline.BakeJob(bpy.context.scene, depsgraph, view_layer,
                                  {"method": "HIERARCHICAL", "element_size": 0.1})
     blocks = next(p for p in job.exported.parts if p.object_name == "Blocks")
-    core = addon.native.core()
+    core = addon.engine.native.core()
     original = core.bake
 
     def failing(*arguments, **keywords):

@@ -19,7 +19,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
-auto_settings = sys.modules[harness.MODULE + ".auto_settings"]
+auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 ui = sys.modules[harness.MODULE + ".ui"]
 
 # The presets as the user guide documents them: (element size as a fraction of the scene's size,

@@ -43,7 +43,9 @@ for env in "${envs[@]}"; do
 done
 
 # The add-on's sources, with the manifest naming the wheels and the platforms they are for.
+mkdir -p "$source_dir/engine"
 cp addon/bake_radiosity/*.py "$source_dir/"
+cp addon/bake_radiosity/engine/*.py "$source_dir/engine/"
 python3 tools/packaging/write_manifest.py addon/bake_radiosity/blender_manifest.toml "$source_dir"
 "$chroot_tool" trixie run -- blender -b --factory-startup --command extension build \
   --source-dir "$source_dir" --output-dir "$out" --split-platforms

@@ -13,15 +13,20 @@ bl_info = {
 }
 
 import importlib  # noqa: E402  (bl_info first: Blender reads it without running the module)
+import importlib.util  # noqa: E402
 
-MODULE_NAMES = ("properties", "operators", "ui", "cli")
+# Outside Blender only the Blender-free layer (bake_radiosity.engine) can be used: nothing here
+# that needs bpy is imported then.
+IN_BLENDER = importlib.util.find_spec("bpy") is not None
+MODULE_NAMES = ("properties", "operators", "ui", "cli") if IN_BLENDER else ()
 _modules = [importlib.import_module("." + name, __package__) for name in MODULE_NAMES]
 
 # Reloading the add-on (F3 > Reload Scripts) must pick up edited modules.
 if "bpy" in locals():
     _modules = [importlib.reload(module) for module in _modules]
 
-import bpy  # noqa: E402, F401  (after the reload check above, as Blender's own add-ons do)
+if IN_BLENDER:
+    import bpy  # noqa: E402, F401  (after the reload check above, as Blender's own add-ons do)
 
 
 def bake(scene, **overrides):

@@ -2,61 +2,17 @@
 plus lamps. Reads evaluated meshes (modifiers applied, instances included) with foreach_get.
 Which objects and lamps take part is what Cycles renders (visibility.py)."""
 
-from dataclasses import dataclass, field
-
 import bpy
 import numpy as np
 
 from . import lights, materials, media_materials, preview, visibility
+from .engine.scene import ExportedScene, Part
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
 COPY_TAG = "radiosity_bake_copy"
 # Volume objects a bake made (media_writeback.py) carry this one; output too.
 MEDIUM_TAG = "radiosity_bake_medium"
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
-
-
-@dataclass
-class Part:
-    """One exported mesh instance and where its polygons and corners sit in the flat arrays."""
-    object_name: str
-    mesh_name: str
-    is_instance: bool
-    polygon_start: int
-    polygon_stop: int
-    corner_start: int
-    corner_stop: int
-    # corner_order[k] = the mesh loop stored at flat corner corner_start + k (winding reversed
-    # for mirrored instances so normals point the way Blender shows them).
-    corner_order: np.ndarray
-    polygon_material_index: np.ndarray
-    material_names: list
-    matrix_world: np.ndarray
-    unwritable: str = ""  # why ORIGINAL cannot write its light onto the object's mesh ("" = it can)
-    shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
-
-
-@dataclass
-class ExportedScene:
-    positions: np.ndarray       # (V,3) float32, world space
-    face_offsets: np.ndarray    # (F+1,) int32
-    corner_vertices: np.ndarray  # (C,) int32
-    reflectance: np.ndarray     # (F,3) float32
-    emission: np.ndarray        # (F,3) float32
-    material: np.ndarray        # (F,) int32: one id per material, lamps get their own
-    front_only: np.ndarray      # (F,) uint8: 1 = emits from its front only (area lamps; faces emit from both sides)
-    lights: list
-    parts: list
-    warnings: list = field(default_factory=list)
-
-    @property
-    def polygon_count(self):
-        return len(self.face_offsets) - 1
-
-    def scene_arrays(self):
-        """The arrays `_core.plan` and `_core.bake` take first, in their order."""
-        return (self.positions, self.face_offsets, self.corner_vertices, self.reflectance, self.emission,
-                self.material)
 
 
 def export_scene(depsgraph, view_layer):
@@ -76,23 +32,6 @@ def export_scene(depsgraph, view_layer):
 def is_bake_output(original):
     """Whether an (original) object is one a bake made."""
     return bool(original.get(COPY_TAG) or original.get(MEDIUM_TAG))
-
-
-def polygon_normals_areas(positions, face_offsets, corner_vertices):
-    """Unit normals (F,3) and areas (F,) of planar polygons by Newell's method, vectorised."""
-    starts = face_offsets[:-1]
-    counts = np.diff(face_offsets)
-    polygon_of_corner = np.repeat(np.arange(len(counts)), counts)
-    following = np.arange(len(corner_vertices)) + 1
-    last = face_offsets[1:] - 1
-    following[last] = starts
-    p = positions[corner_vertices].astype(np.float64)
-    q = positions[corner_vertices[following]].astype(np.float64)
-    twice = np.zeros((len(counts), 3))
-    np.add.at(twice, polygon_of_corner, np.cross(p, q))
-    length = np.linalg.norm(twice, axis=1)
-    normals = twice / np.where(length > 0.0, length, 1.0)[:, None]
-    return normals, 0.5 * length
 
 
 class _Builder:

@@ -9,7 +9,8 @@ import numpy as np
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
-from . import export, visibility
+from . import visibility
+from .engine import polygons
 
 # A corner this much below the brightest corner of the bake counts as black.
 BLACK = 1e-6
@@ -23,7 +24,7 @@ def turned_away_warnings(exported, corner_radiance):
     black = _black_reflecting_polygons(exported, corner_radiance)
     if not black.any():
         return []
-    normals, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
+    normals, areas = polygons.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
     centres = _polygon_centres(exported)
     sources = _light_sources(exported, centres, areas)
     if not sources:

@@ -28,7 +28,7 @@ import bpy
 import numpy as np
 
 from . import materials
-from .errors import BakeError
+from .engine.errors import BakeError
 
 # Disk and ellipse lamps become ELLIPSE_GRID x ELLIPSE_GRID quads: a square grid mapped onto the
 # disk (the elliptical grid mapping, x sqrt(1 - y^2 / 2), y sqrt(1 - x^2 / 2)), whose rim is a

@@ -8,7 +8,8 @@ from dataclasses import dataclass, field
 import bpy
 import numpy as np
 
-from . import media_materials, native, visibility
+from . import media_materials, visibility
+from .engine import native
 from .export import GEOMETRY_TYPES, MEDIUM_TAG, _corner_order, _read, is_bake_output  # noqa: F401 (MEDIUM_TAG)
 
 # Automatic zone size aims at this many cells over the media's boxes: the exchange factors grow

@@ -12,7 +12,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import native
+from .engine import native
 from .media_export import MEDIUM_TAG
 from .writeback import _copies_collection
 

@@ -7,7 +7,9 @@ import threading
 
 import bpy
 
-from . import native, overlay, pipeline, preview, wiring
+from . import overlay, pipeline, preview, wiring
+from .engine import native
+from .engine import summary as summary_lines
 
 _running = None  # the operator instance baking now; one bake at a time
 
@@ -118,7 +120,8 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
             self._overlay = overlay.ProgressOverlay(*self._worker.layout)
         if info is None:
             return
-        self._set_status(context, pipeline.progress_text(info, self._worker.job.choice.tolerance) + " - Esc to cancel")
+        tolerance = self._worker.job.choice.tolerance
+        self._set_status(context, summary_lines.progress_text(info, tolerance) + " - Esc to cancel")
         if self._overlay is not None and info.get("radiance") is not None:
             self._overlay.show(info["radiance"])
 

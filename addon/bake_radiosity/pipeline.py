@@ -1,15 +1,15 @@
 """The bake pipeline: export (needs bpy) -> solve (no bpy, may run in a worker thread) ->
 write back (needs bpy). `bake(scene, **overrides)` runs all three; the operator splits them."""
 
-import contextlib
 import math
 import time
 
 import bpy
 
-from . import (auto_settings, energy, error_estimate, export, facing, media_energy, media_export, media_writeback,
-               native, outliers, world, writeback)
-from .errors import BakeError
+from . import export, facing, media_export, media_writeback, outliers, world, writeback
+from .engine import auto_settings, energy, error_estimate, media_energy, native, solve
+from .engine import summary as summary_lines
+from .engine.errors import BakeError
 
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
@@ -19,18 +19,7 @@ SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "to
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
 QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
-METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
-                 "hierarchical": "hierarchical"}
 TARGETS = ("ORIGINAL", "COPIES")
-
-
-@contextlib.contextmanager
-def core_errors_as_bake_errors():
-    """The core's errors (bad input, budget, divergence, files: `_core.Error`) as BakeError."""
-    try:
-        yield
-    except native.core().Error as error:
-        raise BakeError(str(error)) from error
 
 
 def settings_of(scene, overrides=None):
@@ -62,7 +51,7 @@ class BakeJob:
 
     def __init__(self, scene, depsgraph, view_layer, overrides=None):
         self.settings = settings_of(scene, overrides)
-        with core_errors_as_bake_errors():
+        with solve.core_errors_as_bake_errors():
             self._prepare(scene, depsgraph, view_layer)
         self.result = None
 
@@ -110,9 +99,9 @@ class BakeJob:
 
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
-        with core_errors_as_bake_errors():
+        with solve.core_errors_as_bake_errors():
             try:
-                self.result = self._run_core(progress)
+                self.result = solve.bake(self.exported, self.core_settings(), progress)
             except native.core().NumericalError as error:
                 # Light that is not a number is the bake's fault, never a result to write: say where.
                 raise BakeError("The bake failed: light stopped being a number in its '%s' phase at %s. Nothing "
@@ -133,34 +122,14 @@ class BakeJob:
     def element_layout(self):
         """(element_vertices, element_corners, element_back) in the order progress reports radiance."""
         e = self.exported
-        with core_errors_as_bake_errors():
-            layout = native.core().plan(*e.scene_arrays(), front_only=e.front_only, **self.core_settings())
+        layout = solve.plan(e, self.core_settings())
         return layout["element_vertices"], layout["element_corners"], layout["element_back"]
 
     def core_settings(self):
         """The settings `_core.plan` and `_core.bake` take for this bake."""
-        e, c = self.exported, self.choice
-        settings = {"element_size": c.element_size, "resolution": c.resolution, "method": c.method,
-                    "tolerance": c.tolerance, "max_iterations": int(self.settings["max_iterations"]),
-                    "hard_edge_angle": float(self.settings["hard_edge_angle"]), "lights": e.lights,
-                    "matrix_budget_bytes": c.budget_bytes,
-                    "ambient": c.method == "progressive"}  # brightens only the preview, never the result
-        if self.world_baked():
-            settings["world"] = self.world.radiance
-        if c.method == "hierarchical":
-            settings.update(refine_tolerance=c.refine_tolerance, max_bytes=c.budget_bytes)
-        elif self.media.media:  # the zonal bake: surfaces and media in one system
-            settings["media"] = [m.grid for m in self.media.media]
-            if c.method == "gauss_seidel":
-                settings["over_relaxation"] = auto_settings.AUTOMATIC_OVER_RELAXATION
-        else:
-            settings.update(c.stability_keywords())
-        return settings
-
-    def _run_core(self, progress):
-        e = self.exported
-        return native.core().bake(*e.scene_arrays(), front_only=e.front_only, progress=progress,
-                                  **self.core_settings())
+        return solve.core_settings(self.choice, self.settings, self.exported.lights,
+                                   world=self.world.radiance if self.world_baked() else None,
+                                   media=[m.grid for m in self.media.media])
 
     def write(self, scene):
         """Writes the solved light into the file and returns the bake's summary."""
@@ -168,7 +137,7 @@ class BakeJob:
         announce("writing the light into the scene")
         media_files = []
         if self.media.media:  # files first: if one cannot be written, nothing in the scene has changed
-            with core_errors_as_bake_errors():
+            with solve.core_errors_as_bake_errors():
                 media_files = media_writeback.write_files(self.media, self.result, self.settings["media_folder"])
         self.warnings += writeback.write(scene, self.exported, self.result, self.settings)
         if self.media.media:
@@ -199,8 +168,8 @@ class BakeJob:
             "seconds": {"export": self.seconds_export, "world_map": self.world.seconds if self.world else 0.0,
                         **r["seconds"], "writeback": seconds_writeback},
         }
-        scene.radiosity.last_report = report_line(summary)
-        scene.radiosity.last_accuracy = accuracy_line(summary)
+        scene.radiosity.last_report = summary_lines.report_line(summary)
+        scene.radiosity.last_accuracy = summary_lines.accuracy_line(summary)
         return summary
 
     def world_baked(self):
@@ -245,44 +214,6 @@ class BakeJob:
         return ["%d face(s) skipped: %s%s" % (len(skipped), ", ".join(names), ", ..." if len(skipped) > 5 else "")]
 
 
-def report_line(summary):
-    seconds = sum(summary["seconds"].values())
-    state = "converged" if summary["converged"] else "NOT converged"
-    zones = ""
-    if summary.get("zones"):
-        # Uniform regions merge into larger zones (docs/volumes.md): both counts.
-        zones = ", %d zones (%d voxels of %.3g m)" % (summary["zones"], summary["zones_before_merge"],
-                                                      summary["zone_size"])
-    hierarchy = summary.get("hierarchy")
-    if hierarchy:
-        zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
-            hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
-    gather = ", final gather (%d rays a corner)" % summary["gather_rays"] if summary.get("gather_rays") else ""
-    lit = ", lit by %s" % summary["lit_by"] if summary.get("world") else ""
-    return "%d elements%s, %s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
-        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, summary["iterations"],
-        summary["residual"], state, seconds)
-
-
-def accuracy_line(summary):
-    """Residual; energy balance; error estimate; resolution and why (the panel shows one part a line)."""
-    power, error = summary["energy"], summary["error_estimate"]
-    lost = power["lost"] / power["emitted"] if power["emitted"] > 0.0 else 0.0
-    return "; ".join((
-        "Residual %.1e" % summary["residual"],
-        "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
-            power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
-        "Error typically %s %.1f%% (%s, measured on the Cornell box) + at most %.2g%% (solve)" % (
-            error["discretisation_relation"], 100 * error["discretisation"],
-            "element size and final gather, against Cycles" if summary.get("gather_rays") else "element size",
-            100 * error["solve_bound"]),
-        "Hemi-cube resolution %d%s%s: %s" % (
-            summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
-            if summary["hemicube_rotations"] > 1 else "", ", near field" if summary["near_field"] else "",
-            summary["resolution_reason"]),
-    ))
-
-
 def view_layer_and_depsgraph(scene):
     context = bpy.context
     if context.scene == scene:
@@ -314,21 +245,8 @@ class ProgressPrinter:
         now = time.perf_counter()
         if now - self.last >= self.interval or info["done"] == info["total"] or info["phase"] != self.phase:
             self.last, self.phase = now, info["phase"]
-            print(progress_text(info, self.tolerance), flush=True)
+            print(summary_lines.progress_text(info, self.tolerance), flush=True)
         return True
-
-
-def progress_text(info, tolerance):
-    """One status line. The solve's share is how far the residual has come on a log scale
-    from 1 to the tolerance: iteration counts are only caps."""
-    if info["phase"] == "solve":
-        residual = max(info["residual"], 1e-300)
-        share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
-        return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
-    phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
-             "gather": "final gather", "gather seams": "final gather at seams",
-             "world": "world light"}.get(info["phase"], info["phase"])
-    return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 
 def bake(scene, **overrides):

@@ -4,7 +4,8 @@ import textwrap
 
 import bpy
 
-from . import auto_settings, preview
+from . import preview
+from .engine import auto_settings
 
 # Average width of a label character at UI scale 1, in pixels (Blender's default interface font).
 CHARACTER_PIXELS = 7.0

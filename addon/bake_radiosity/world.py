@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from .errors import BakeError
+from .engine.errors import BakeError
 
 # 512 x 256 pixels of 0.7 degrees, 64 samples a pixel: smooth skies to 0.01% (a Sky Texture
 # without its sun: the floor under it as Cycles bakes it). A sun disc (Blender's Sky Texture: 0.545

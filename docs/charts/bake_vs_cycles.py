@@ -128,7 +128,7 @@ def radiosity_bake(addon, obj, method=None, near_field=None, **settings):
     over-relaxation; near_field True or False overrides the presets' own."""
     if method is not None:
         settings["method"] = "GAUSS_SEIDEL" if method == "GAUSS_SEIDEL_PLAIN" else method
-    auto_settings = sys.modules["bake_radiosity.auto_settings"]
+    auto_settings = sys.modules["bake_radiosity.engine.auto_settings"]
     omega = 1.0 if method == "GAUSS_SEIDEL_PLAIN" else auto_settings.AUTOMATIC_OVER_RELAXATION
     presets = auto_settings.PRESETS if near_field is None else {
         name: dataclasses.replace(preset, near_field=near_field) for name, preset in auto_settings.PRESETS.items()}

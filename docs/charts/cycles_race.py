@@ -79,7 +79,7 @@ def cycles_bake(obj, samples, seed):
 def radiosity_bake(addon, obj, quality, final_gather, preset=None, gather_rays=None):
     """(corner colours, Stopwatch, summary) of a whole add-on bake; `preset` replaces the quality's
     auto_settings preset and `gather_rays` the rays of its gathered solution for this bake."""
-    auto_settings = sys.modules["bake_radiosity.auto_settings"]
+    auto_settings = sys.modules["bake_radiosity.engine.auto_settings"]
     presets = dict(auto_settings.PRESETS)
     if preset is not None:
         presets[quality] = preset
@@ -139,7 +139,7 @@ class Race:
         for quality in PRESETS:
             for gather in (True, False):
                 self.bake_row("preset", quality, gather)
-        medium = sys.modules["bake_radiosity.auto_settings"].PRESETS["MEDIUM"]
+        medium = sys.modules["bake_radiosity.engine.auto_settings"].PRESETS["MEDIUM"]
         # With the gather a preset solves its gathered solution (auto_settings.Gathered): vary that one.
         for divisions in ELEMENT_DIVISIONS if args.elements else ():
             gathered = dataclasses.replace(medium.gathered, divisions=divisions)
@@ -154,7 +154,7 @@ class Race:
 
     def bake_row(self, kind, quality, gather, preset=None, rays=None):
         colors, seconds, summary = radiosity_bake(self.addon, self.box, quality, gather, preset, rays)
-        auto_settings = sys.modules["bake_radiosity.auto_settings"]
+        auto_settings = sys.modules["bake_radiosity.engine.auto_settings"]
         used = preset or auto_settings.PRESETS[quality]
         used = used.gathered if gather else used  # the solution the bake solved
         self.record(colors, seconds, kind=kind, quality=quality, final_gather=int(gather), divisions=used.divisions,

@@ -40,7 +40,7 @@ args = parser.parse_args(argv)
 assert bpy.ops.preferences.addon_install(filepath=os.path.abspath(args.addon_zip), overwrite=True) == {"FINISHED"}
 assert bpy.ops.preferences.addon_enable(module="bake_radiosity") == {"FINISHED"}
 addon = sys.modules["bake_radiosity"]
-auto_settings = sys.modules["bake_radiosity.auto_settings"]
+auto_settings = sys.modules["bake_radiosity.engine.auto_settings"]
 
 scenes.clear_scene()
 box = scenes.cornell_box(args.light)

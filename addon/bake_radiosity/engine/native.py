@@ -17,12 +17,12 @@ def core():
     global _module
     if _module is None:
         try:
-            from . import _core
+            from .. import _core
         except ImportError as packaged_error:
             try:
                 from bake_radiosity_core import _core
             except ImportError as wheel_error:
-                folder = os.path.dirname(os.path.abspath(__file__))
+                folder = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
                 raise CoreMissingError(
                     "Bake Radiosity's native module _core could not be loaded, neither from %s (%s) nor from "
                     "the bake_radiosity_core wheel (%s). It must be built for Python %d.%d, the Python this "

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import export, native
+from . import native, polygons
 
 CORE_METHODS = {"GAUSS_SEIDEL": "gauss_seidel", "JACOBI": "jacobi", "PROGRESSIVE": "progressive",
                 "HIERARCHICAL": "hierarchical"}
@@ -119,7 +119,7 @@ def scene_size(exported):
     a long corridor is not judged by its length alone, so the element count a preset gives stays
     near 6 x divisions^2 whatever the scene's shape. Polygons with a non-finite vertex do not count:
     the core skips them with a warning naming each."""
-    _, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
+    _, areas = polygons.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
     return math.sqrt(float(areas[np.isfinite(areas)].sum()) / 6.0)
 
 
@@ -189,9 +189,9 @@ def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
 
 def choose(settings, exported, media=()):
     """The Choice for `settings` (pipeline.settings_of) on `exported`; `media`: the media's grids
-    as `_core.bake` takes them (a zonal bake, whose core call takes no stability settings). With a preset and the final gather, the preset's
-    gathered solution, unless its form factors would not fit the memory budget (the hierarchy,
-    which has no gather, then bakes the preset's own)."""
+    as `_core.bake` takes them (a zonal bake, whose core call takes no stability settings). With a
+    preset and the final gather, the preset's gathered solution, unless its form factors would not
+    fit the memory budget (the hierarchy, which has no gather, then bakes the preset's own)."""
     size = scene_size(exported)
     zonal = len(media) > 0
     preset = PRESETS.get(settings["quality"])

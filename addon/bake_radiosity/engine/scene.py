@@ -1,0 +1,49 @@
+"""The scene as the engine takes it: flat arrays of world-space polygons with their materials,
+plus lamps, and where each exported object's polygons sit in them (export.py fills it in Blender)."""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass
+class Part:
+    """One exported mesh instance and where its polygons and corners sit in the flat arrays."""
+    object_name: str
+    mesh_name: str
+    is_instance: bool
+    polygon_start: int
+    polygon_stop: int
+    corner_start: int
+    corner_stop: int
+    # corner_order[k] = the mesh loop stored at flat corner corner_start + k (winding reversed
+    # for mirrored instances so normals point the way Blender shows them).
+    corner_order: np.ndarray
+    polygon_material_index: np.ndarray
+    material_names: list
+    matrix_world: np.ndarray
+    unwritable: str = ""  # why ORIGINAL cannot write its light onto the object's mesh ("" = it can)
+    shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
+
+
+@dataclass
+class ExportedScene:
+    positions: np.ndarray       # (V,3) float32, world space
+    face_offsets: np.ndarray    # (F+1,) int32
+    corner_vertices: np.ndarray  # (C,) int32
+    reflectance: np.ndarray     # (F,3) float32
+    emission: np.ndarray        # (F,3) float32
+    material: np.ndarray        # (F,) int32: one id per material, lamps get their own
+    front_only: np.ndarray      # (F,) uint8: 1 = emits from its front only (area lamps; faces emit from both sides)
+    lights: list
+    parts: list
+    warnings: list = field(default_factory=list)
+
+    @property
+    def polygon_count(self):
+        return len(self.face_offsets) - 1
+
+    def scene_arrays(self):
+        """The arrays `_core.plan` and `_core.bake` take first, in their order."""
+        return (self.positions, self.face_offsets, self.corner_vertices, self.reflectance, self.emission,
+                self.material)

@@ -1,0 +1,51 @@
+"""The core's part of a bake: the settings `_core.plan` and `_core.bake` take for a Choice, and
+the two calls, with the core's errors as BakeError."""
+
+import contextlib
+
+from . import auto_settings, native
+from .errors import BakeError
+
+
+@contextlib.contextmanager
+def core_errors_as_bake_errors():
+    """The core's errors (bad input, budget, divergence, files: `_core.Error`) as BakeError."""
+    try:
+        yield
+    except native.core().Error as error:
+        raise BakeError(str(error)) from error
+
+
+def core_settings(choice, settings, lights, world=None, media=()):
+    """The keyword settings of `_core.plan` and `_core.bake` for `choice` (auto_settings.choose),
+    the artist's `settings` (max_iterations, hard_edge_angle), the exported lamps, the World's map
+    (None: no World light) and the media's grids (none: a surface bake)."""
+    c = choice
+    keywords = {"element_size": c.element_size, "resolution": c.resolution, "method": c.method,
+                "tolerance": c.tolerance, "max_iterations": int(settings["max_iterations"]),
+                "hard_edge_angle": float(settings["hard_edge_angle"]), "lights": lights,
+                "matrix_budget_bytes": c.budget_bytes,
+                "ambient": c.method == "progressive"}  # brightens only the preview, never the result
+    if world is not None:
+        keywords["world"] = world
+    if c.method == "hierarchical":
+        keywords.update(refine_tolerance=c.refine_tolerance, max_bytes=c.budget_bytes)
+    elif media:  # the zonal bake: surfaces and media in one system
+        keywords["media"] = list(media)
+        if c.method == "gauss_seidel":
+            keywords["over_relaxation"] = auto_settings.AUTOMATIC_OVER_RELAXATION
+    else:
+        keywords.update(c.stability_keywords())
+    return keywords
+
+
+def plan(scene, keywords):
+    """What `_core.bake` will solve for `scene` (scene.ExportedScene) with `keywords`: its elements."""
+    with core_errors_as_bake_errors():
+        return native.core().plan(*scene.scene_arrays(), front_only=scene.front_only, **keywords)
+
+
+def bake(scene, keywords, progress=None):
+    """`_core.bake` of `scene` with `keywords`; `progress`: a callback or a `_core.ProgressMonitor`."""
+    with core_errors_as_bake_errors():
+        return native.core().bake(*scene.scene_arrays(), front_only=scene.front_only, progress=progress, **keywords)

@@ -1,0 +1,57 @@
+"""A bake's summary in words: the report line, the accuracy line and progress lines."""
+
+import math
+
+METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
+                 "hierarchical": "hierarchical"}
+
+
+def report_line(summary):
+    seconds = sum(summary["seconds"].values())
+    state = "converged" if summary["converged"] else "NOT converged"
+    zones = ""
+    if summary.get("zones"):
+        # Uniform regions merge into larger zones (docs/volumes.md): both counts.
+        zones = ", %d zones (%d voxels of %.3g m)" % (summary["zones"], summary["zones_before_merge"],
+                                                      summary["zone_size"])
+    hierarchy = summary.get("hierarchy")
+    if hierarchy:
+        zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
+            hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
+    gather = ", final gather (%d rays a corner)" % summary["gather_rays"] if summary.get("gather_rays") else ""
+    lit = ", lit by %s" % summary["lit_by"] if summary.get("world") else ""
+    return "%d elements%s, %s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
+        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, summary["iterations"],
+        summary["residual"], state, seconds)
+
+
+def accuracy_line(summary):
+    """Residual; energy balance; error estimate; resolution and why (the panel shows one part a line)."""
+    power, error = summary["energy"], summary["error_estimate"]
+    lost = power["lost"] / power["emitted"] if power["emitted"] > 0.0 else 0.0
+    return "; ".join((
+        "Residual %.1e" % summary["residual"],
+        "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
+            power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
+        "Error typically %s %.1f%% (%s, measured on the Cornell box) + at most %.2g%% (solve)" % (
+            error["discretisation_relation"], 100 * error["discretisation"],
+            "element size and final gather, against Cycles" if summary.get("gather_rays") else "element size",
+            100 * error["solve_bound"]),
+        "Hemi-cube resolution %d%s%s: %s" % (
+            summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
+            if summary["hemicube_rotations"] > 1 else "", ", near field" if summary["near_field"] else "",
+            summary["resolution_reason"]),
+    ))
+
+
+def progress_text(info, tolerance):
+    """One status line. The solve's share is how far the residual has come on a log scale
+    from 1 to the tolerance: iteration counts are only caps."""
+    if info["phase"] == "solve":
+        residual = max(info["residual"], 1e-300)
+        share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
+        return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
+    phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
+             "gather": "final gather", "gather seams": "final gather at seams",
+             "world": "world light"}.get(info["phase"], info["phase"])
+    return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
