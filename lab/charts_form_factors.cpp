@@ -1,7 +1,7 @@
 /// @file charts_form_factors.cpp
 /// @brief Chart 1 and the aliasing chart: form-factor error against time per row.
 ///
-/// Every case is one element per polygon, so "hemicube" is the seed's centre-point value and
+/// Every case is one element per polygon, so "hemicube" is the classic centre-point value (Cohen & Greenberg 1985) and
 /// "near_field" the corrected row. Time is per row on one thread (render, accumulate, correct),
 /// repeated until 50 ms have passed.
 #include "charts.h"

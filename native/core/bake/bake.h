@@ -68,7 +68,7 @@ struct BakeSettings {
     /// Element cap, sliver split, intersection and contact cuts (docs/stability.md).
     ElementLimits limits = ElementLimits().with_contacts();
     /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
-    /// elements; see RowSettings::rotations). 1 = the seed's single hemi-cube.
+    /// elements; see RowSettings::rotations). 1 = a single hemi-cube (Cohen & Greenberg 1985).
     int hemicube_rotations = 1;
     /// Analytic factors for near pairs (shared edges, receivers closer than their size); off by default.
     NearFieldSettings near_field;

@@ -7,7 +7,7 @@
 ///   tau_end + sum of credits = 1
 /// up to float rounding: light that leaves a ray is taken up by exactly one zone (energy is
 /// conserved by construction). A zone's credit is also what it adds to the radiance seen along the
-/// ray when it has uniform radiance J_k: the seed's ray integral (13) in zone k gives J_k times it.
+/// ray when it has uniform radiance J_k: the zonal method's ray integral (Rushmeier & Torrance 1987) in zone k gives J_k times it.
 #pragma once
 
 #include "media/volume.h"

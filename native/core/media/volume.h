@@ -10,9 +10,9 @@
 ///
 /// Units (radiance, as the surface system): a voxel's `emission` is Cycles' volume emission,
 /// radiance added per metre of path (dL/ds = -K_t L + emission + sigma_s L_in). A zone's
-/// radiance J_k is the seed's B_k / pi, the radiance it sends out by emission and scattering:
+/// radiance J_k is the zone radiosity B_k / pi of Rushmeier & Torrance 1987, the radiance it sends out by emission and scattering:
 ///   J_k = emission_k / K_t,k + Omega_k * (incident radiance, mean over the zone and all directions),
-/// which is the seed's (10) and (16) divided by 4 pi K_t V_k: (1 - Omega) E = K_a E / K_t with
+/// which is their zone equation divided by 4 pi K_t V_k: (1 - Omega) E = K_a E / K_t with
 /// K_a E the emission coefficient. So `Zones::emitted` = emission / K_t plays the role of a
 /// surface's emitted radiance and Omega that of its reflectance.
 #pragma once

@@ -5,17 +5,17 @@
 /// Unknowns are numbered elements first (0 .. n-1), then zones (n .. n+z-1). Row x holds, for every
 /// receiver y, the fraction R_xy of the light leaving x that y takes up (per RGB channel):
 ///  - element i (hemi-cube at its centre, cell weights dF_p): the visible element j gets
-///    dF_p * tau along the cell's ray up to j (the seed's S_iS_j / A_i), every zone k crossed gets
+///    dF_p * tau along the cell's ray up to j (Rushmeier & Torrance 1987's S_iS_j / A_i), every zone k crossed gets
 ///    dF_p * its credited fraction (S_iV_k / A_i);
 ///  - zone k (full cube, cell weights solid angle / 4 pi): the same walk, but each cell's ray starts
 ///    at its own point inside the zone, spread over its whole block by a low-discrepancy sequence, so
 ///    the zone's own extinction of its light is counted: V_kV_k > 0, and adjacent and optically thick
-///    zones stay accurate where the seed's point formula (32) fails (test_volume_zonal.cpp).
+///    zones stay accurate where the point formula for volume-to-volume factors fails (test_volume_zonal.cpp).
 ///    Surfaces are found by the cube's item buffer from the zone's centre; each ray's distance to
 ///    that element is measured from its own start point (to the element's plane).
 /// Because the walk conserves energy per ray, a row sums to the fraction of the cells that see
 /// something: 1 in a closed enclosure. Gathering reads rows as they are: L_x = E_x + a_x sum R_xy L_y
-/// (zonal_solver.h). The seed's reciprocity w_x R_xy = w_y R_yx (w as there) holds only
+/// (zonal_solver.h). The zonal method's reciprocity w_x R_xy = w_y R_yx (w as there) holds only
 /// approximately for rows rendered from both ends; enforce_reciprocity() makes it exact.
 #pragma once
 

@@ -17,7 +17,7 @@
 /// zones thick along each axis. K_t stays the zone's (piecewise constant).
 ///
 /// A purely absorbing volume with these grids, as Cycles renders one (emission * tau ds along a
-/// ray), gives the seed's ray integral (13) with J varying inside the zones.
+/// ray), gives the zonal method's ray integral (Rushmeier & Torrance 1987) with J varying inside the zones.
 #pragma once
 
 #include "media/volume.h"

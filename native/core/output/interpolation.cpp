@@ -10,7 +10,7 @@
 ///  1. interior slot: the mean radiance of S (seed: B(e) = (B1 + B2 + B3 + B4) / 4);
 ///  2. border slot: the least-squares plane through the samples S knows - its elements' radiances
 ///     at their centres and its elements' interior corners (step 1) - evaluated at w.
-/// Step 2 is the seed's extrapolation made general: on the seed's 2x2 example the samples for a
+/// Step 2 is the classic border extrapolation B(a) = B1 + (B1 - B(e)) made general: on a 2x2 example the samples for a
 /// are B1 and B(e), collinear with a, giving B(a) = B1 + (B1 - B(e)); for b they are B1, B2, B(e),
 /// giving B1 + B2 - B(e) = (B(a) + B(c)) / 2. It is exact for every linear field on any grid of
 /// quads or triangles, which "mean of per-element extrapolations B_f + (B_f - mean interior)" is

@@ -1,5 +1,5 @@
 /// @file interpolation.h
-/// @brief Element radiances to vertex colours, as the seed interpolates patch radiosities.
+/// @brief Element radiances to vertex colours, as classic radiosity interpolates patch radiosities to vertices (averaged inside, extrapolated at borders).
 ///
 /// A vertex inside a smooth surface gets the mean of its adjacent elements; a vertex on the
 /// surface's border is extrapolated, B(a) = B1 + (B1 - B(e)), with B(e) the mean of the

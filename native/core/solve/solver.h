@@ -26,7 +26,7 @@ struct SolveSettings {
     Method method = Method::GaussSeidel;
     double tolerance = 1e-4;     ///< relative residual to stop at
     int max_iterations = 1000;   ///< sweeps; for progressive refinement one sweep = n shots
-    bool ambient = false;        ///< progressive: add the seed's ambient term to the reported preview
+    bool ambient = false;        ///< progressive: add the ambient term of Cohen, Chen, Wallace & Greenberg 1988 to the reported preview
     /// Gauss-Seidel only (surfaces and the zonal system): successive over-relaxation, L_i += omega (L_i^GS - L_i), omega in (0, 2).
     /// 1 = plain Gauss-Seidel; 0 = automatic, recommended_over_relaxation(elements), the measured
     /// choice. Pays off where reflectance is near 1 (docs/stability.md).

@@ -1,5 +1,5 @@
 /// @file solver_sweeps.cpp
-/// @brief Gauss-Seidel (the seed's iteration, in place) and Jacobi (two buffers) on the rows of F.
+/// @brief Gauss-Seidel (in place, as Cohen & Greenberg 1985 solve it) and Jacobi (two buffers) on the rows of F.
 ///
 /// Each sweep reads every row once. While it computes the next iterate it also measures the exact
 /// residual of the iterate it started from, so the residual we stop on and return belongs to the
@@ -69,7 +69,7 @@ SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveS
         throw InputError("over_relaxation must be 0 (automatic) or in (0, 2), got " + std::to_string(omega));
     SparseRow row;
     return iterate_sweeps(
-        elements.emission /* the seed's start: B = E */, settings, jacobi ? "Jacobi" : "Gauss-Seidel", progress,
+        elements.emission /* the classic start: B = E */, settings, jacobi ? "Jacobi" : "Gauss-Seidel", progress,
         elements.size(),
         [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) {
             return (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row)

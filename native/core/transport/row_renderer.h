@@ -8,7 +8,7 @@
 
 namespace radiosity {
 
-/// How rows are computed. The defaults give the plain hemi-cube row of the seed.
+/// How rows are computed. The defaults give the plain hemi-cube row (Cohen & Greenberg 1985).
 struct RowSettings {
     int resolution = 128;  ///< hemi-cube cells per full face edge
     /// Hemi-cubes per row, each turned about the normal by a further 1/rotations of a quarter

@@ -1,7 +1,7 @@
 /// @file hemicube.h
 /// @brief Item-buffer rendering of elements onto a hemi-cube (or a full cube) around a point.
 ///
-/// The seed's method: the hemi-cube's five faces are N x N (top) and N x N/2 (sides) cells, each
+/// The hemi-cube (Cohen & Greenberg 1985): its five faces are N x N (top) and N x N/2 (sides) cells, each
 /// with a delta form factor computed once per resolution. Every element is projected onto the
 /// faces it overlaps with a z-buffer, so each cell ends up naming the nearest visible element.
 /// Summing the cells' weights per element gives one row of form factors.

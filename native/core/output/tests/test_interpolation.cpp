@@ -1,5 +1,5 @@
 /// @file test_interpolation.cpp
-/// @brief Corner colours against the seed's 2x2 example, linear fields, hard edges, materials, clamping.
+/// @brief Corner colours against the classic 2x2 example of border extrapolation, linear fields, hard edges, materials, clamping.
 #include "output/interpolation.h"
 
 #include <gtest/gtest.h>
@@ -72,7 +72,7 @@ void expect_near(const Rgb& a, const Rgb& b, double tolerance, const std::string
 }
 
 TEST(Interpolation, SeedTwoByTwoExample) {
-    // Seed 23.5: F1 F2 over F3 F4, vertices a b c / d e f / g h i.
+    // Four elements, F1 F2 over F3 F4, vertices a b c / d e f / g h i.
     const Rgb B1(10, 1, 4), B2(12, 2, 4), B3(11, 1, 5), B4(15, 3, 6);
     const Vec3 a(0, 2, 0), b(1, 2, 0), c(2, 2, 0), d(0, 1, 0), e(1, 1, 0), f(2, 1, 0), g(0, 0, 0), h(1, 0, 0), i(2, 0, 0);
     const Field field = [&](const Vec3& p) { return p.y > 1 ? (p.x < 1 ? B1 : B2) : (p.x < 1 ? B3 : B4); };
@@ -181,7 +181,7 @@ TEST(Interpolation, ExtrapolationIsClampedAtZero) {
     const Field field = [](const Vec3& p) { return p.x < 1 && p.y > 1 ? Rgb(0.0, 5.0, 0.0) : Rgb(4.0, 5.0, 0.0); };
     s.add_grid(Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), 2, 2, field);
     const CornerColors colors = interpolate_corners(s.el, s.radiance, nullptr, 0.5236f);
-    // Element 2 is the top-left (radiance 0 in red); its corner 3 is the seed's a: 0 + (0 - 3) < 0.
+    // Element 2 is the top-left (radiance 0 in red); its corner 3 is the example's a: 0 + (0 - 3) < 0.
     ASSERT_EQ(s.radiance[2].r, 0.0);
     EXPECT_EQ(colors.element_corner[4 * 2 + 3], Rgb(0.0, 5.0, 0.0));
     for (const Rgb& c : colors.element_corner) EXPECT_GE(glm::min(c.r, glm::min(c.g, c.b)), 0.0);
