@@ -1,6 +1,6 @@
 /// @file row_renderer.h
 /// @brief One form-factor row per call: hemi-cube(s) at the element's centre, then the optional
-/// corrections of issue 5 (orientation averaging against aliasing, near-field factors).
+/// corrections against its known errors (orientation averaging against aliasing, near-field factors).
 #pragma once
 
 #include "visibility/hemicube.h"
