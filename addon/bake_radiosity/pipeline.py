@@ -98,6 +98,10 @@ class BakeJob:
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
+        if self.exported.textures is not None and (self.media.media or self.method == "hierarchical"):
+            self.warnings.append("Image textures count as their mean colour %s: bake with Method Gauss-Seidel, "
+                                 "Jacobi or Progressive to see them" % ("with media (fog, smoke)" if self.media.media
+                                                                       else "with the hierarchical method"))
         if self.world is not None and not self.world_baked():
             if self.lit_by() == "nothing":
                 raise BakeError("Only the World lights the scene, and its light is not baked with media (fog, "
@@ -157,7 +161,8 @@ class BakeJob:
             bake = functools.partial(native.core().bake_with_media, media=[m.grid for m in self.media.media],
                                      **over_relaxation)
         else:
-            bake = functools.partial(bake, world=self.world.radiance if self.world is not None else None)
+            bake = functools.partial(bake, world=self.world.radiance if self.world is not None else None,
+                                     textures=e.textures)
         return bake(
             e.positions, e.face_offsets, e.corner_vertices, e.reflectance, e.emission, e.material,
             element_size=c.element_size, resolution=c.resolution, method=method, tolerance=c.tolerance,

@@ -4,6 +4,7 @@
 #include "bake_keywords.h"
 #include "bindings.h"
 #include "scene_arrays.h"
+#include "texture_arrays.h"
 
 #include "radiosity/bake.h"
 #include "radiosity/resolution.h"
@@ -23,9 +24,12 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const py::object& progress, bool near_field, double over_relaxation, float max_element_aspect,
                      std::size_t max_elements, int hemicube_rotations, bool final_gather, int gather_rays,
                      int gather_shadow_rays, float direct_emitter_area, const py::object& world, int world_samples,
-                     int world_point_samples, const std::optional<Array<uint8_t>>& front_only) {
-    const SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+                     int world_point_samples, const std::optional<Array<uint8_t>>& front_only,
+                     const py::object& textures) {
+    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    const std::optional<TextureArrays> texture_arrays =
+        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
+    if (texture_arrays) input.textures = &texture_arrays->view;
     BakeSettings settings = bake_settings(element_size, resolution, method, tolerance, max_iterations,
                                           hard_edge_angle, ambient, lights, matrix_budget_bytes);
     // The stability settings of docs/stability.md; the core checks their ranges (ValueError).
@@ -59,9 +63,12 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
 py::dict element_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                         const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                         const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                        float element_size, float max_element_aspect, const std::optional<Array<uint8_t>>& front_only) {
-    const SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+                        float element_size, float max_element_aspect, const std::optional<Array<uint8_t>>& front_only,
+                        const py::object& textures) {
+    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    const std::optional<TextureArrays> texture_arrays =
+        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
+    if (texture_arrays) input.textures = &texture_arrays->view;
     if (!(element_size >= 0.0f)) throw InputError("element_size must be >= 0");
     BuildResult build;
     {
@@ -120,12 +127,12 @@ void bind_bake(py::module_& m) {
           "gather_shadow_rays"_a = FinalGatherSettings().shadow_rays,
           "direct_emitter_area"_a = BakeSettings().direct_emitter_area, "world"_a = py::none(),
           "world_samples"_a = WorldLight().samples, "world_point_samples"_a = WorldLight().point_samples,
-          "front_only"_a = py::none());
+          "front_only"_a = py::none(), "textures"_a = py::none());
     m.def("elements", &element_arrays,
           "The elements bake() would solve for (same order as its progress radiance), without solving.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "element_size"_a = 0.0f, "max_element_aspect"_a = 0.0f,
-          "front_only"_a = py::none());
+          "front_only"_a = py::none(), "textures"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",

@@ -4,6 +4,7 @@
 
 #include "final_gather.h"
 #include "small_emitters.h"
+#include "surface_textures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -41,7 +42,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     BakeResult result;
 
     auto start = Clock::now();
-    result.build = build_elements(input, settings.element_size, settings.limits);
+    result.build = build_elements(input, settings.element_size, settings.limits, progress);
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
@@ -128,6 +129,8 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);
     }
+    // Textured faces show their texel at each corner, lit by the light arriving there.
+    if (input.textures) detail::texture_corners(input, elements, result.light_colors, result.colors);
     return result;
 }
 
