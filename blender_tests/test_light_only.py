@@ -25,7 +25,7 @@ import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
-materials = sys.modules[harness.MODULE + ".materials"]
+textures = sys.modules[harness.MODULE + ".textures"]
 cli = importlib.import_module(harness.MODULE + ".cli")
 
 ROOM, CELLS, WALL_ALBEDO = 2.0, 8, 0.5
@@ -70,7 +70,7 @@ def scene(textured):
     """(floor, wall); the floor textured or of the texture's mean colour. Returns also that colour."""
     scenes.clear_scene()
     image = checker_image()
-    mean = materials.image_mean_color(image)
+    mean = textures.Images().load(image).mean
     floor_material = textured_material(image) if textured else scenes.diffuse("Mean Floor", tuple(mean))
     floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (ROOM, 0, 0), (0, ROOM, 0), CELLS, CELLS) + (0,)],
                                [floor_material])
@@ -202,7 +202,7 @@ def test_wire_and_unwire():
     np.testing.assert_allclose(emit_bake(wall), harness.corner_colors(wall.data, "Radiosity"), rtol=1e-3, atol=1e-5)
     # The floor emits its light times one of the checker's colours at each corner.
     ratio = emit_bake(floor) / harness.corner_colors(floor.data, "Radiosity Light")
-    linear = materials.srgb_to_linear(np.asarray(CHECKER))
+    linear = textures.srgb_to_linear(np.asarray(CHECKER))
     assert np.all(ratio >= linear.min(axis=0) - 0.01) and np.all(ratio <= linear.max(axis=0) + 0.01), ratio
     assert bpy.ops.radiosity.wire() == {"CANCELLED"}  # wired already: nothing added twice
 

@@ -249,7 +249,9 @@ class _Textures:
     def add_part(self, object_name, mesh, order, loop_total, material_index, slot_surfaces):
         """The textures of one mesh's polygons (`material_index` into `slot_surfaces`)."""
         self.add_plain(len(loop_total), len(order))
-        uv, texture, scale = self.uv[-1], {r: a[-1] for r, a in self.texture.items()}, {r: a[-1] for r, a in self.scale.items()}
+        uv = self.uv[-1]
+        texture = {role: arrays[-1] for role, arrays in self.texture.items()}
+        scale = {role: arrays[-1] for role, arrays in self.scale.items()}
         polygon_of_corner = np.repeat(np.arange(len(loop_total)), loop_total)
         maps = {}
         for slot, surface in enumerate(slot_surfaces):

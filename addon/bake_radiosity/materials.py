@@ -197,8 +197,9 @@ def _color(socket, groups, images):
     if not source.is_output:
         value = np.atleast_1d(np.array(source.default_value, dtype=np.float64))
         if len(value) < 3:  # a group input of another type: Blender would convert it
-            return np.array(DEFAULT_REFLECTANCE), ["'%s' input fed by a '%s' group input is not supported; using "
-                                                   "grey %.1f" % (socket.name, source.type, DEFAULT_REFLECTANCE[0])], None
+            problem = ("'%s' input fed by a '%s' group input is not supported; using grey %.1f"
+                       % (socket.name, source.type, DEFAULT_REFLECTANCE[0]))
+            return np.array(DEFAULT_REFLECTANCE), [problem], None
         return value[:3], [], None
     node = source.node
     if node.type == "RGB":

@@ -99,9 +99,9 @@ class BakeJob:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
         if self.exported.textures is not None and (self.media.media or self.method == "hierarchical"):
+            where = "with media (fog, smoke)" if self.media.media else "with the hierarchical method"
             self.warnings.append("Image textures count as their mean colour %s: bake with Method Gauss-Seidel, "
-                                 "Jacobi or Progressive to see them" % ("with media (fog, smoke)" if self.media.media
-                                                                       else "with the hierarchical method"))
+                                 "Jacobi or Progressive to see them" % where)
         if self.world is not None and not self.world_baked():
             if self.lit_by() == "nothing":
                 raise BakeError("Only the World lights the scene, and its light is not baked with media (fog, "
@@ -336,7 +336,8 @@ def progress_text(info, tolerance):
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
              "gather": "final gather", "gather seams": "final gather at seams",
-             "world": "world light"}.get(info["phase"], info["phase"])
+             "world": "world light", "textures": "texture means",
+             "solve rows": "solving, rows of this sweep"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])
 
 
