@@ -84,12 +84,15 @@ def texel_at(stored, uv):
     return srgb_to_linear(blend.astype(np.float64))
 
 
-def scene(floor_material):
-    """A 2 m floor of 8 x 8 faces with a UV map over the whole texture, a grey wall standing on one
-    edge and a point lamp above."""
+def scene(material_name, png_name):
+    """A 2 m floor of 8 x 8 faces with a UV map over the whole texture (a new PNG `png_name`, on the
+    floor's material), a grey wall standing on one edge and a point lamp above. Returns (floor,
+    image, the PNG's path)."""
     scenes.clear_scene()
+    path = save_png(png_name)
+    image = bpy.data.images.load(path)
     floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (ROOM, 0, 0), (0, ROOM, 0), CELLS, CELLS) + (0,)],
-                               [floor_material])
+                               [textured_material(material_name, image)])
     uv = floor.data.uv_layers.new(name="UVMap")
     uv.data.foreach_set("uv", (harness.corner_positions(floor.data)[:, :2] / ROOM).astype(np.float32).ravel())
     scenes.mesh_object("Wall", [scenes.grid((0, 0, 0), (0, ROOM, 0), (0, 0, ROOM), CELLS, CELLS) + (0,)],
@@ -100,7 +103,7 @@ def scene(floor_material):
     lamp_object = bpy.data.objects.new("Lamp", lamp)
     lamp_object.location = (1.2, 0.9, 1.3)
     bpy.context.scene.collection.objects.link(lamp_object)
-    return floor
+    return floor, image, path
 
 
 def floor_uv(floor):
@@ -114,8 +117,7 @@ def relative_rms(baked, reference):
 
 
 def test_textured_floor_follows_the_texture_and_cycles():
-    image = bpy.data.images.load(save_png("Smooth"))
-    floor = scene(textured_material("Textured Floor", image))
+    floor, image, _ = scene("Textured Floor", "Smooth")
     settings = bpy.context.scene.radiosity
     settings.quality = "MEDIUM"
     settings.write_light_only = True
@@ -151,23 +153,19 @@ def test_textured_floor_follows_the_texture_and_cycles():
 
 
 def test_missing_image_and_uv_map_are_named():
-    path = save_png("Gone")
-    image = bpy.data.images.load(path)
-    material = textured_material("Tiles", image)
-    floor = scene(material)
+    floor, image, path = scene("Tiles", "Gone")
     os.remove(path)
     image.reload()
     assert tuple(image.size) == (0, 0)
     summary = addon.bake(bpy.context.scene, quality="DRAFT", write_light_only=True)
-    named = [w for w in summary["warnings"] if "'Tiles'" in w and "Gone.png" in w]
+    named = [w for w in summary["warnings"] if "'Tiles'" in w and path in w]
     assert named, summary["warnings"]
     # The Color input's own value, 0.8 (scenes.diffuse): the floor reflects 0.8 of its light.
     ratio = harness.corner_colors(floor.data, "Radiosity") / harness.corner_colors(floor.data, "Radiosity Light")
     np.testing.assert_allclose(ratio, 0.8, rtol=1e-5)
     assert bpy.ops.radiosity.bake() == {"FINISHED"}  # the operator too bakes on
 
-    image = bpy.data.images.load(save_png("Kept"))
-    floor = scene(textured_material("Unmapped", image))
+    floor, _, _ = scene("Unmapped", "Kept")
     floor.data.uv_layers.remove(floor.data.uv_layers["UVMap"])
     summary = addon.bake(bpy.context.scene, quality="DRAFT")
     assert any("UV map" in w and "'Floor'" in w for w in summary["warnings"]), summary["warnings"]
