@@ -269,7 +269,7 @@ class _Textures:
             if uv_map not in maps:
                 maps[uv_map] = textures.corner_uvs(mesh, uv_map, order)
             if maps[uv_map] is None:
-                which = "a UV map" if uv_map == textures.ACTIVE_RENDER else "the UV map '%s'" % uv_map
+                which = "UV map" if uv_map == textures.ACTIVE_RENDER else "UV map '%s'" % uv_map
                 self.missing_uv.setdefault("Image textures count as their mean colour where the mesh has no %s (Cycles "
                                            "reads the texel at UV 0, 0 there)" % which, []).append(object_name)
                 continue

@@ -204,7 +204,7 @@ def _color(socket, groups, images):
     node = source.node
     if node.type == "RGB":
         return np.array(node.outputs[0].default_value[:3], dtype=np.float64), [], None
-    if node.type == "TEX_IMAGE":
+    if node.type == "TEX_IMAGE" and source.name == "Color":
         return _image_color(socket, node, inner_groups, images)
     return (np.array(DEFAULT_REFLECTANCE),
             ["'%s' input driven by '%s' is not supported; using grey %.1f"
