@@ -31,7 +31,8 @@ class TextureUse:
     scale: np.ndarray
 
     def scaled(self, factor):
-        return TextureUse(self.image, self.node, self.uv_map, self.scale * factor)
+        # A negative factor (a Metallic above 1) takes nothing away: the colour is clamped at 0 anyway.
+        return TextureUse(self.image, self.node, self.uv_map, np.maximum(self.scale * factor, 0.0))
 
 
 @dataclass
