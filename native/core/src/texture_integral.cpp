@@ -57,6 +57,39 @@ Moments moments(const std::vector<P2>& polygon, const P2& origin) {
     return m;
 }
 
+/// Whether whole cells can be tested against `polygon` (convex, as an element's footprint is):
+/// its edges as half-planes a x + b y <= c that hold inside, either winding.
+struct HalfPlanes {
+    std::vector<glm::dvec3> planes;
+    bool convex = true;
+
+    explicit HalfPlanes(const std::vector<P2>& polygon) {
+        const std::size_t n = polygon.size();
+        double sign = 0.0;
+        for (std::size_t k = 0; k < n && convex; ++k) {
+            const P2 a = polygon[k], b = polygon[(k + 1) % n], c = polygon[(k + 2) % n];
+            const double turn = (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x);
+            if (turn != 0.0 && sign != 0.0 && (turn > 0.0) != (sign > 0.0)) convex = false;
+            if (turn != 0.0) sign = turn;
+        }
+        if (!convex) return;
+        for (std::size_t k = 0; k < n; ++k) {  // left of each edge for counter-clockwise, right for clockwise
+            const P2 a = polygon[k], b = polygon[(k + 1) % n];
+            const glm::dvec3 plane(sign * (b.y - a.y), -sign * (b.x - a.x), 0.0);
+            planes.emplace_back(plane.x, plane.y, plane.x * a.x + plane.y * a.y);
+        }
+    }
+
+    /// Whether the unit cell at (i, j) lies wholly inside.
+    bool holds_cell(double i, double j) const {
+        if (!convex) return false;
+        for (const glm::dvec3& h : planes)
+            for (const P2 corner : {P2(i, j), P2(i + 1, j), P2(i, j + 1), P2(i + 1, j + 1)})
+                if (h.x * corner.x + h.y * corner.y > h.z) return false;
+        return true;
+    }
+};
+
 }  // namespace
 
 Rgb footprint_mean(const Texture& t, const std::vector<glm::dvec2>& uv) {
@@ -73,17 +106,24 @@ Rgb footprint_mean(const Texture& t, const std::vector<glm::dvec2>& uv) {
     }
     const double total = moments(polygon, P2(0.0)).area;
     if (!(std::abs(total) > 1e-12) || !std::isfinite(total)) return texel(t, float(uv[0].x), float(uv[0].y));
+    const HalfPlanes inside(polygon);
+    // A whole cell's moments about its corner, with the polygon's orientation.
+    const double orientation = total > 0.0 ? 1.0 : -1.0;
+    const Moments whole{orientation, orientation / 2.0, orientation / 2.0, orientation / 4.0};
     Rgb sum(0.0);
     std::vector<P2> cell, scratch;
     for (auto j = int64_t(std::floor(low.y)); double(j) < high.y; ++j)
         for (auto i = int64_t(std::floor(low.x)); double(i) < high.x; ++i) {
-            cell = polygon;
-            clip(cell, 0, double(i), 1.0, scratch);
-            clip(cell, 0, double(i + 1), -1.0, scratch);
-            clip(cell, 1, double(j), 1.0, scratch);
-            clip(cell, 1, double(j + 1), -1.0, scratch);
-            if (cell.size() < 3) continue;
-            const Moments m = moments(cell, P2(double(i), double(j)));
+            Moments m = whole;
+            if (!inside.holds_cell(double(i), double(j))) {
+                cell = polygon;
+                clip(cell, 0, double(i), 1.0, scratch);
+                clip(cell, 0, double(i + 1), -1.0, scratch);
+                clip(cell, 1, double(j), 1.0, scratch);
+                clip(cell, 1, double(j + 1), -1.0, scratch);
+                if (cell.size() < 3) continue;
+                m = moments(cell, P2(double(i), double(j)));
+            }
             if (!linear) {
                 sum += texel_at(t, i, j) * m.area;
                 continue;
