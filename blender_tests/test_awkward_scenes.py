@@ -202,7 +202,8 @@ def test_an_array_modifier_and_a_missing_volume_file_are_named():
 
 def test_the_batch_command_reports_every_phase():
     """The batch command prints a line as each phase starts, the add-on's own (export, settings,
-    write-back) and the core's (form factors, solve, final gather), in the order they run."""
+    write-back) and the core's (building elements, form factors, solve, final gather), in the order
+    they run."""
     scenes.room_with_panel()
     source = os.path.join(args.work, "room.blend")
     bpy.ops.wm.save_as_mainfile(filepath=source, copy=True)
@@ -212,7 +213,8 @@ def test_the_batch_command_reports_every_phase():
     assert run.returncode == 0, run.stderr[-800:]
     lines = [line for line in run.stdout.splitlines() if line.startswith("Bake Radiosity: ")]
     print("\n".join(lines))
-    phases = ["exporting", "choosing settings", "form factors", "solving", "final gather", "writing", "saved"]
+    phases = ["exporting", "choosing settings", "preparing", "form factors", "solving", "final gather", "writing",
+              "saved"]
     first = [next((k for k, line in enumerate(lines) if line.startswith("Bake Radiosity: " + p)), None)
              for p in phases]
     assert None not in first and first == sorted(first), dict(zip(phases, first))

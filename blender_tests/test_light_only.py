@@ -4,8 +4,8 @@ The scene: a 2 x 2 m floor with an image texture (a checker of two colours, made
 a temporary PNG) on its Diffuse BSDF's Color, a grey wall standing on one edge, and a point lamp
 over the floor. The light-only attribute is the light arriving without the surface's colour, as
 Cycles' Diffuse bake with Direct and Indirect and without Color gives it:
-- times the albedo it is exactly the radiance the add-on writes for the same floor untextured (of
-  the texture's mean colour, which is what the solve uses), with and without the final gather;
+- times the albedo it is exactly the radiance the add-on writes, with and without the final
+  gather: on the textured floor the albedo at each corner is the checker's texel there;
 - it matches Cycles' Diffuse (Direct + Indirect, no Color) bake of the textured floor to corners.
 Wire Baked Light makes each material emit the light times its colour (Cycles' Emit bake of the wired
 wall gives its radiance back); Unwire Baked Light restores the node trees exactly."""
@@ -25,7 +25,7 @@ import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
-materials = sys.modules[harness.MODULE + ".materials"]
+textures = sys.modules[harness.MODULE + ".textures"]
 cli = importlib.import_module(harness.MODULE + ".cli")
 
 ROOM, CELLS, WALL_ALBEDO = 2.0, 8, 0.5
@@ -70,7 +70,7 @@ def scene(textured):
     """(floor, wall); the floor textured or of the texture's mean colour. Returns also that colour."""
     scenes.clear_scene()
     image = checker_image()
-    mean = materials.image_mean_color(image)
+    mean = textures.Images().load(image).mean
     floor_material = textured_material(image) if textured else scenes.diffuse("Mean Floor", tuple(mean))
     floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (ROOM, 0, 0), (0, ROOM, 0), CELLS, CELLS) + (0,)],
                                [floor_material])
@@ -87,6 +87,21 @@ def scene(textured):
     return floor, wall, np.float32(mean).astype(np.float64)
 
 
+def checker_texel(floor):
+    """(corners, 3) linear colour of the checker at each floor corner's UV, as Cycles' Closest lookup
+    with Repeat reads it (corners lie on texel edges: the texel above and to the right), from the
+    bytes the PNG stores."""
+    image = next(n for n in floor.active_material.node_tree.nodes if n.bl_idname == "ShaderNodeTexImage").image
+    size = image.size[0]
+    stored = np.empty(size * size * 4, dtype=np.float32)
+    image.pixels.foreach_get(stored)
+    stored = stored.reshape(size, size, 4)[:, :, :3].astype(np.float64)
+    uv = np.empty(len(floor.data.loops) * 2, dtype=np.float32)
+    floor.data.uv_layers["UVMap"].data.foreach_get("uv", uv)
+    texel = np.floor(uv.reshape(-1, 2).astype(np.float64) * size).astype(int) % size
+    return textures.srgb_to_linear(stored[texel[:, 1], texel[:, 0]])
+
+
 def select_only(obj):
     """`obj` selected and active, for Cycles' bake."""
     for other in bpy.context.view_layer.objects:
@@ -98,7 +113,7 @@ def select_only(obj):
 
 def test_light_times_albedo_is_the_radiance():
     for final_gather in (True, False):
-        floor, wall, mean = scene(textured=True)
+        floor, wall, _ = scene(textured=True)
         settings = bpy.context.scene.radiosity
         settings.quality = "CUSTOM"
         for key, value in SETTINGS.items():
@@ -113,15 +128,17 @@ def test_light_times_albedo_is_the_radiance():
                                    rtol=1e-5, atol=1e-7)
         assert floor.data.color_attributes.active_color.name == "Radiosity"
 
-        floor, wall, _ = scene(textured=False)
-        addon.bake(bpy.context.scene, final_gather=final_gather, write_light_only=False, **SETTINGS)
         radiance = harness.corner_colors(floor.data, "Radiosity")
-        assert floor.data.color_attributes.get("Radiosity Light") is None  # not asked for
-        error = np.abs(light * mean - radiance).max() / radiance.max()
+        albedo = checker_texel(floor)
+        error = np.abs(light * albedo - radiance).max() / radiance.max()
         print("final gather %s: floor light %.4f..%.4f, max |light x albedo - radiance| %.2e of the brightest"
               % (final_gather, light.min(), light.max(), error), flush=True)
         assert light.min() > 0.0
-        np.testing.assert_allclose(light * mean, radiance, rtol=1e-5, atol=1e-6 * radiance.max())
+        np.testing.assert_allclose(light * albedo, radiance, rtol=1e-5, atol=1e-6 * radiance.max())
+
+        floor, wall, _ = scene(textured=False)
+        addon.bake(bpy.context.scene, final_gather=final_gather, write_light_only=False, **SETTINGS)
+        assert floor.data.color_attributes.get("Radiosity Light") is None  # not asked for
 
 
 def test_light_matches_cycles_diffuse_bake():
@@ -202,7 +219,7 @@ def test_wire_and_unwire():
     np.testing.assert_allclose(emit_bake(wall), harness.corner_colors(wall.data, "Radiosity"), rtol=1e-3, atol=1e-5)
     # The floor emits its light times one of the checker's colours at each corner.
     ratio = emit_bake(floor) / harness.corner_colors(floor.data, "Radiosity Light")
-    linear = materials.srgb_to_linear(np.asarray(CHECKER))
+    linear = textures.srgb_to_linear(np.asarray(CHECKER))
     assert np.all(ratio >= linear.min(axis=0) - 0.01) and np.all(ratio <= linear.max(axis=0) + 0.01), ratio
     assert bpy.ops.radiosity.wire() == {"CANCELLED"}  # wired already: nothing added twice
 

@@ -20,7 +20,7 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
 operators = sys.modules[harness.MODULE + ".operators"]
-native = sys.modules[harness.MODULE + ".native"]
+native = sys.modules[harness.MODULE + ".engine.native"]
 
 QUICK = dict(element_size=0.125, hemicube_resolution=64)  # 4 x 4 walls: 2 x 2 elements a face
 
@@ -42,13 +42,14 @@ def test_cancel_changes_nothing():
     job = pipeline.BakeJob(bpy.context.scene, depsgraph, view_layer)
 
     # The worker the interactive operator runs, cancelled through its monitor as Esc does, once
-    # the core has reported some form factors.
+    # the core has reported some form factors (building the elements reports before them).
     worker = operators._Worker(job, want_layout=False)
     worker.thread.start()
     deadline = time.perf_counter() + 60
-    while worker.monitor.snapshot() is None and time.perf_counter() < deadline:
+    reported = None
+    while (reported is None or reported["phase"] != "form_factors") and time.perf_counter() < deadline:
         time.sleep(0.001)
-    reported = worker.monitor.snapshot()
+        reported = worker.monitor.snapshot()
     worker.cancel()
     worker.thread.join(timeout=600)
     assert reported is not None and reported["phase"] == "form_factors", reported

@@ -5,7 +5,7 @@ Which objects and lamps take part is what Cycles renders (visibility.py)."""
 import bpy
 import numpy as np
 
-from . import lights, materials, media_materials, preview, visibility
+from . import lights, materials, media_materials, preview, textures, visibility
 from .engine.scene import ExportedScene, Part
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
@@ -45,11 +45,12 @@ class _Builder:
         self.parts, self.lights, self.warnings = [], [], []
         self.lamp_problems = {}         # problem -> [lamp name or (name, detail)], said once each
         self.vertex_total = self.polygon_total = self.corner_total = 0
+        self.textures = _Textures()
 
     def material_id(self, material):
         key = material.name if material is not None else None
         if key not in self.material_ids:
-            surface = materials.surface_of(material)
+            surface = materials.surface_of(material, self.textures.images)
             warning = materials.warning_for(key, surface)
             if warning:
                 self.warnings.append(warning)
@@ -100,6 +101,8 @@ class _Builder:
         self.counts.append(loop_total)
         self.corners.append(loop_vertex[order] + self.vertex_total)
         self.polygon_material.append(slot_ids[material_index])
+        self.textures.add_part(original.name, mesh, order, loop_total, material_index,
+                               [self.surfaces[i] for i in slot_ids])
         self.vertex_total += len(world)
         self.polygon_total += len(loop_start)
         self.corner_total += len(loop_vertex)
@@ -121,6 +124,7 @@ class _Builder:
             self.counts.append(np.full(len(quads), 4, dtype=np.int32))
             self.corners.append(quads.ravel().astype(np.int32) + self.vertex_total)
             self.polygon_material.append(np.full(len(quads), len(self.surfaces) - 1, dtype=np.int32))
+            self.textures.add_plain(len(quads), quads.size)
             self.vertex_total += len(vertices)
             self.polygon_total += len(quads)
             self.corner_total += quads.size
@@ -136,6 +140,7 @@ class _Builder:
     def finish(self):
         # One warning per problem, however many lamps have it (thirty bulbs with a radius: one line).
         self.warnings += [visibility.listing(problem, "lamp", items) for problem, items in self.lamp_problems.items()]
+        self.warnings += self.textures.warnings()
         self._mark_shared_meshes()
         counts = np.concatenate(self.counts) if self.counts else np.zeros(0, np.int32)
         material = np.concatenate(self.polygon_material) if self.polygon_material else np.zeros(0, np.int32)
@@ -149,7 +154,7 @@ class _Builder:
             emission=emission[material] if len(material) else np.zeros((0, 3), np.float32),
             material=material.astype(np.int32),
             front_only=np.isin(material, self.lamp_ids).astype(np.uint8),
-            lights=self.lights, parts=self.parts, warnings=self.warnings,
+            lights=self.lights, parts=self.parts, warnings=self.warnings, textures=self.textures.keyword(),
         )
 
     def _mark_shared_meshes(self):
@@ -162,6 +167,80 @@ class _Builder:
             if name and len(parts) > 1:
                 for part in parts:
                     part.shares_mesh = True
+
+
+class _Textures:
+    """The faces' textures as the core takes them: the images each once, and per face which texture
+    varies its reflectance and emission, with the UVs of its corners."""
+
+    def __init__(self):
+        self.images = textures.Images()
+        self.index = {}             # (image name, filter, extension) -> texture index
+        self.entries = []           # the `images` list of the keyword
+        self.uv, self.texture, self.scale = [], {"reflectance": [], "emission": []}, {"reflectance": [], "emission": []}
+        self.missing_uv = {}        # problem -> [object names]
+
+    def add_plain(self, polygons, corners):
+        """Polygons without textures (lamps)."""
+        self.uv.append(np.zeros((corners, 2), np.float32))
+        for role in self.texture:
+            self.texture[role].append(np.full(polygons, -1, np.int32))
+            self.scale[role].append(np.zeros((polygons, 3), np.float32))
+
+    def add_part(self, object_name, mesh, order, loop_total, material_index, slot_surfaces):
+        """The textures of one mesh's polygons (`material_index` into `slot_surfaces`)."""
+        self.add_plain(len(loop_total), len(order))
+        uv = self.uv[-1]
+        texture = {role: arrays[-1] for role, arrays in self.texture.items()}
+        scale = {role: arrays[-1] for role, arrays in self.scale.items()}
+        polygon_of_corner = np.repeat(np.arange(len(loop_total)), loop_total)
+        maps = {}
+        for slot, surface in enumerate(slot_surfaces):
+            uses = {"reflectance": surface.reflectance_texture, "emission": surface.emission_texture}
+            uses = {role: use for role, use in uses.items() if use is not None}
+            faces = material_index == slot
+            if not uses or not faces.any():
+                continue
+            uv_map = next(iter(uses.values())).uv_map
+            for role, use in list(uses.items()):
+                if use.uv_map != uv_map:  # one UV per corner: the first role's map wins
+                    self.missing_uv.setdefault("An image texture reads another UV map than the material's other "
+                                               "texture and counts as its mean colour", []).append(object_name)
+                    del uses[role]
+            if uv_map not in maps:
+                maps[uv_map] = textures.corner_uvs(mesh, uv_map, order)
+            if maps[uv_map] is None:
+                which = "UV map" if uv_map == textures.ACTIVE_RENDER else "UV map '%s'" % uv_map
+                self.missing_uv.setdefault("Image textures count as their mean colour where the mesh has no %s (Cycles "
+                                           "reads the texel at UV 0, 0 there)" % which, []).append(object_name)
+                continue
+            corners = faces[polygon_of_corner]
+            uv[corners] = maps[uv_map][corners]
+            for role, use in uses.items():
+                texture[role][faces] = self._texture_index(use)
+                scale[role][faces] = use.scale
+
+    def _texture_index(self, use):
+        filter_name, extension = textures.lookup(use.node)
+        key = (use.image.name, filter_name, extension)
+        if key not in self.index:
+            self.index[key] = len(self.entries)
+            self.entries.append({"rgb": use.image.rgb, "srgb": use.image.srgb, "filter": filter_name,
+                                 "extension": extension})
+        return self.index[key]
+
+    def warnings(self):
+        return [visibility.listing(problem, "object", list(dict.fromkeys(names)))
+                for problem, names in self.missing_uv.items()]
+
+    def keyword(self):
+        if not self.entries:
+            return None
+        textured = {"images": self.entries, "corner_uv": np.concatenate(self.uv).astype(np.float32)}
+        for role in self.texture:
+            textured[role + "_texture"] = np.concatenate(self.texture[role]).astype(np.int32)
+            textured[role + "_scale"] = np.concatenate(self.scale[role]).astype(np.float32)
+        return textured
 
 
 def _unwritable_reason(instance, original, mesh):

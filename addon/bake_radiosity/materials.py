@@ -4,11 +4,17 @@ Follows the material output's Surface input through Principled BSDF, Diffuse BSD
 Add Shader, Mix Shader, reroutes and node groups (into a group to its output, and from its
 inputs back out to the group node). Anything else becomes a grey diffuse stand-in with a
 one-line warning naming the material, so a bake never fails on an unusual node tree.
+
+An Image Texture on a colour input counts as its mean colour here; the surface also says which
+texture varies its reflectance and its emission about that mean (TextureUse, one of each).
 """
 
 from dataclasses import dataclass, field
+from typing import Optional
 
 import numpy as np
+
+from . import textures
 
 # Cycles renders a surface without a material as this grey diffuse.
 DEFAULT_REFLECTANCE = (0.8, 0.8, 0.8)
@@ -17,14 +23,31 @@ MAX_REFLECTANCE = 0.999
 
 
 @dataclass
+class TextureUse:
+    """An Image Texture that varies a colour: colour = mean colour + scale x (texel - image mean)."""
+    image: textures.Image
+    node: object
+    uv_map: str
+    scale: np.ndarray
+
+    def scaled(self, factor):
+        # A negative factor (a Metallic above 1) takes nothing away: the colour is clamped at 0 anyway.
+        return TextureUse(self.image, self.node, self.uv_map, np.maximum(self.scale * factor, 0.0))
+
+
+@dataclass
 class Surface:
     reflectance: np.ndarray
     emission: np.ndarray
     problems: list = field(default_factory=list)
+    reflectance_texture: Optional[TextureUse] = None
+    emission_texture: Optional[TextureUse] = None
 
 
-def surface_of(material):
-    """Diffuse reflectance and emitted radiance of `material` (None = no material)."""
+def surface_of(material, images=None):
+    """Diffuse reflectance and emitted radiance of `material` (None = no material). `images`
+    (textures.Images) loads each image once across materials."""
+    images = images if images is not None else textures.Images()
     if material is None:
         return Surface(np.array(DEFAULT_REFLECTANCE), np.zeros(3))
     if not material.use_nodes or material.node_tree is None:
@@ -33,7 +56,7 @@ def surface_of(material):
     if output is None or not output.inputs["Surface"].is_linked:
         # Cycles renders an unconnected output black; a black surface only absorbs.
         return Surface(np.zeros(3), np.zeros(3), ["no surface shader connected"])
-    surface = _shader_at(output.inputs["Surface"], (), 1.0)
+    surface = _shader_at(output.inputs["Surface"], (), 1.0, images)
     if (surface.reflectance > 1.0).any() or (surface.reflectance < 0.0).any():
         # Above 1 a surface would give out more light than it receives (and the solve diverge).
         surface.problems.append("diffuse colour (%.3g, %.3g, %.3g) is outside 0-1; clamped"
@@ -93,34 +116,39 @@ def _group_output(tree):
     return (active or outputs or [None])[0]
 
 
-def _shader_at(socket, groups, weight):
+def _shader_at(socket, groups, weight, images):
     """Weighted reflectance and emission of the shader network feeding the input `socket`."""
     source, groups = _source(socket, groups)
     if not source.is_output:  # nothing connected inside a group: Cycles renders no closure, black
         return Surface(np.zeros(3), np.zeros(3))
-    return _shader(source.node, groups, weight)
+    return _shader(source.node, groups, weight, images)
 
 
-def _shader(node, groups, weight):
+def _shader(node, groups, weight, images):
     """Weighted reflectance and emission of the shader network that ends in `node`."""
     kind = node.type
     if kind == "BSDF_PRINCIPLED":
-        return _principled(node, groups, weight)
+        return _principled(node, groups, weight, images)
     if kind == "BSDF_DIFFUSE":
-        color, problems = _color(node.inputs["Color"], groups)
-        return Surface(weight * color, np.zeros(3), problems)
+        color, problems, texture = _color(node.inputs["Color"], groups, images)
+        return Surface(weight * color, np.zeros(3), problems, reflectance_texture=_scaled(texture, weight))
     if kind == "EMISSION":
-        color, problems = _color(node.inputs["Color"], groups)
+        color, problems, texture = _color(node.inputs["Color"], groups, images)
         strength, more = _number(node.inputs["Strength"], groups)
-        return Surface(np.zeros(3), weight * color * strength, problems + more)
+        return Surface(np.zeros(3), weight * color * strength, problems + more,
+                       emission_texture=_scaled(texture, weight * strength))
     if kind in {"ADD_SHADER", "MIX_SHADER"}:
-        return _combination(node, groups, weight)
+        return _combination(node, groups, weight, images)
     return Surface(weight * np.array(DEFAULT_REFLECTANCE), np.zeros(3),
                    ["'%s' is not diffuse; using grey diffuse %.1f" % (node.bl_label, DEFAULT_REFLECTANCE[0])])
 
 
-def _principled(node, groups, weight):
-    base, problems = _color(node.inputs["Base Color"], groups)
+def _scaled(texture, factor):
+    return texture.scaled(factor) if texture is not None else None
+
+
+def _principled(node, groups, weight, images):
+    base, problems, base_texture = _color(node.inputs["Base Color"], groups, images)
     metallic, more = _number(node.inputs["Metallic"], groups)
     problems += more
     transmission = node.inputs.get("Transmission") or node.inputs.get("Transmission Weight")
@@ -128,15 +156,17 @@ def _principled(node, groups, weight):
         problems.append("transmission is ignored (treated as opaque)")
     # Blender 3.x calls the emission colour "Emission"; 4.x calls it "Emission Color".
     emission_socket = node.inputs.get("Emission Color") or node.inputs.get("Emission")
-    emission, more = _color(emission_socket, groups)
+    emission, more, emission_texture = _color(emission_socket, groups, images)
     problems += more
     strength, more = _number(node.inputs["Emission Strength"], groups)
     problems += more
     # Metals have no diffuse lobe: only the dielectric part reflects diffusely.
-    return Surface(weight * base * (1.0 - metallic), weight * emission * strength, problems)
+    return Surface(weight * base * (1.0 - metallic), weight * emission * strength, problems,
+                   reflectance_texture=_scaled(base_texture, weight * (1.0 - metallic)),
+                   emission_texture=_scaled(emission_texture, weight * strength))
 
 
-def _combination(node, groups, weight):
+def _combination(node, groups, weight, images):
     if node.type == "MIX_SHADER":
         fac, problems = _number(node.inputs[0], groups)
         parts = ((node.inputs[1], 1.0 - fac), (node.inputs[2], fac))
@@ -147,33 +177,56 @@ def _combination(node, groups, weight):
     for socket, share in parts:
         if not socket.is_linked or share == 0.0:
             continue
-        part = _shader_at(socket, groups, weight * share)
+        part = _shader_at(socket, groups, weight * share, images)
         total.reflectance = total.reflectance + part.reflectance
         total.emission = total.emission + part.emission
         total.problems += part.problems
+        for role in ("reflectance_texture", "emission_texture"):
+            mine, theirs = getattr(total, role), getattr(part, role)
+            if theirs is not None and mine is None:
+                setattr(total, role, theirs)
+            elif theirs is not None:
+                total.problems.append("only one image texture varies its %s across the surface; image '%s' counts as "
+                                      "its mean colour" % (role.split("_")[0], theirs.image.name))
     return total
 
 
-def _color(socket, groups):
-    """RGB of a colour input: its value, an RGB node, or the mean of an image texture."""
-    source, _ = _source(socket, groups)
+def _color(socket, groups, images):
+    """RGB of a colour input (its value, an RGB node, or an image texture's mean colour), the
+    problems met, and the TextureUse of an image texture that varies it (None: it is uniform)."""
+    source, inner_groups = _source(socket, groups)
     if not source.is_output:
         value = np.atleast_1d(np.array(source.default_value, dtype=np.float64))
         if len(value) < 3:  # a group input of another type: Blender would convert it
-            return np.array(DEFAULT_REFLECTANCE), ["'%s' input fed by a '%s' group input is not supported; using "
-                                                   "grey %.1f" % (socket.name, source.type, DEFAULT_REFLECTANCE[0])]
-        return value[:3], []
+            problem = ("'%s' input fed by a '%s' group input is not supported; using grey %.1f"
+                       % (socket.name, source.type, DEFAULT_REFLECTANCE[0]))
+            return np.array(DEFAULT_REFLECTANCE), [problem], None
+        return value[:3], [], None
     node = source.node
     if node.type == "RGB":
-        return np.array(node.outputs[0].default_value[:3], dtype=np.float64), []
-    if node.type == "TEX_IMAGE" and node.image is not None:
-        mean = image_mean_color(node.image)
-        if mean is not None:
-            return mean, []
-        return np.array(socket.default_value[:3]), ["image '%s' has no pixels" % node.image.name]
+        return np.array(node.outputs[0].default_value[:3], dtype=np.float64), [], None
+    if node.type == "TEX_IMAGE" and source.name == "Color":
+        return _image_color(socket, node, inner_groups, images)
     return (np.array(DEFAULT_REFLECTANCE),
             ["'%s' input driven by '%s' is not supported; using grey %.1f"
-             % (socket.name, node.bl_label, DEFAULT_REFLECTANCE[0])])
+             % (socket.name, node.bl_label, DEFAULT_REFLECTANCE[0])], None)
+
+
+def _image_color(socket, node, groups, images):
+    """An Image Texture on a colour input: its image's mean and the texture's use, or, for an
+    image that cannot be read, the input's own value (Cycles renders a missing image magenta; a
+    bake would spread that colour as light)."""
+    fallback = np.array(socket.default_value[:3], dtype=np.float64)
+    if node.image is None:
+        return fallback, ["'%s' has no image; using the '%s' value (%.3g, %.3g, %.3g)"
+                          % (node.name, socket.name, *fallback)], None
+    image = images.load(node.image)
+    if isinstance(image, str):
+        return fallback, ["%s; using the '%s' value (%.3g, %.3g, %.3g)" % (image, socket.name, *fallback)], None
+    uv_map, why_not = textures.uv_map_of(node, lambda vector: _source(vector, groups)[0])
+    if uv_map is None:
+        return image.mean, ["image '%s' counts as its mean colour: %s" % (image.name, why_not)], None
+    return image.mean, [], TextureUse(image, node, uv_map, np.ones(3))
 
 
 def _number(socket, groups):
@@ -182,22 +235,3 @@ def _number(socket, groups):
         return float(source.default_value), []
     return float(socket.default_value), ["'%s' input is driven by nodes; using its value %.3g"
                                          % (socket.name, socket.default_value)]
-
-
-def image_mean_color(image):
-    """Mean linear RGB of an image, or None if it has no pixels."""
-    width, height = image.size
-    channels = image.channels
-    if width * height == 0 or channels < 3:
-        return None
-    pixels = np.empty(width * height * channels, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    rgb = pixels.reshape(-1, channels)[:, :3].astype(np.float64)
-    # Byte images hold display-encoded values; float images are already linear.
-    if image.colorspace_settings.name == "sRGB" and not image.is_float:
-        rgb = srgb_to_linear(rgb)
-    return rgb.mean(axis=0)
-
-
-def srgb_to_linear(values):
-    return np.where(values <= 0.04045, values / 12.92, ((values + 0.055) / 1.055) ** 2.4)

@@ -5,6 +5,7 @@
 #include "bake_keywords.h"
 #include "bindings.h"
 #include "scene_arrays.h"
+#include "texture_arrays.h"
 
 #include "bake/bake.h"
 #include "visibility/resolution.h"
@@ -18,10 +19,12 @@ namespace {
 py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                     const std::optional<Array<uint8_t>>& front_only, const py::object& progress,
-                     const py::kwargs& keywords) {
-    const SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+                     const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
+                     const py::object& progress, const py::kwargs& keywords) {
+    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    const std::optional<TextureArrays> texture_arrays =
+        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
+    if (texture_arrays) input.textures = &texture_arrays->view;
     const BakeSettings settings = bake_settings(keywords);
     ProgressReporter reporter(progress);
     BakeResult result;
@@ -38,9 +41,12 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
 py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
-                     const std::optional<Array<uint8_t>>& front_only, const py::kwargs& keywords) {
-    const SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+                     const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
+                     const py::kwargs& keywords) {
+    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    const std::optional<TextureArrays> texture_arrays =
+        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
+    if (texture_arrays) input.textures = &texture_arrays->view;
     const BakeSettings settings = bake_settings(keywords);
     BakePlan planned;
     {
@@ -88,7 +94,8 @@ void bind_bake(py::module_& m) {
     using namespace pybind11::literals;
     m.def("bake", &bake_arrays,
           "Bakes radiosity for a polygon soup given as flat arrays (see the add-on's export for the layout) by the "
-          "pipeline the settings choose, and returns one dict whatever the method. Settings, all keywords: "
+          "pipeline the settings choose, and returns one dict whatever the method. The scene may carry textures "
+          "(texture_arrays.h) besides front_only. Settings, all keywords: "
           "element_size (the longest edge of the finest elements, metres; 0: one element per polygon, uniform "
           "methods only), method ('gauss_seidel', 'jacobi', 'progressive' or 'hierarchical'), resolution (hemi-cube "
           "cells per face edge, even), tolerance, max_iterations, hard_edge_angle, ambient, lights (list of dicts), "
@@ -105,14 +112,15 @@ void bind_bake(py::module_& m) {
           "zones_before_merge, zone_radiance, zone_medium, zone_weight (4 K_t V), zone_emitted, zone_albedo, "
           "zone_incident and per medium grids [{origin, voxel_size, density: K_t, emission: K_t J}].",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "progress"_a = py::none());
+          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "textures"_a = py::none(),
+          "progress"_a = py::none());
     m.def("plan", &plan_arrays,
           "What bake() with the same arrays and settings will solve, without solving: its elements (element_vertices, "
           "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
           "the hierarchy's patches), matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
           "matrix_budget_bytes and are stored, else rendered on demand). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
-          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none());
+          "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "textures"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",

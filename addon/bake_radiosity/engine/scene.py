@@ -38,6 +38,9 @@ class ExportedScene:
     lights: list
     parts: list
     warnings: list = field(default_factory=list)
+    # The `textures` keyword of _core.bake (images, corner_uv, per-face texture and scale for
+    # reflectance and emission); None when no face is textured.
+    textures: dict = None
 
     @property
     def polygon_count(self):

@@ -53,5 +53,6 @@ def progress_text(info, tolerance):
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
              "gather": "final gather", "gather seams": "final gather at seams",
-             "world": "world light"}.get(info["phase"], info["phase"])
+             "world": "world light", "textures": "texture means",
+             "solve rows": "solving, rows of this sweep"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])

@@ -2,6 +2,7 @@
 /// @brief The uniform bake pipeline: elements, form factors (stored or on demand), solve, corners.
 #include "bake/pipelines.h"
 
+#include "geometry/surface_textures.h"
 #include "output/final_gather.h"
 #include "transport/small_emitters.h"
 
@@ -48,7 +49,7 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
     BakeResult result;
 
     auto start = Clock::now();
-    result.build = uniform_elements(input, settings);
+    result.build = uniform_elements(input, settings, progress);
     Elements& elements = result.build.elements;
     result.seconds_elements = seconds_since(start);
 
@@ -130,6 +131,8 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);
     }
+    // Textured faces show their texel at each corner, lit by the light arriving there.
+    if (input.textures) detail::texture_corners(input, elements, result.light_colors, result.colors);
     return result;
 }
 

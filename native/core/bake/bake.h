@@ -107,6 +107,8 @@ struct MediaResult {
 struct BakeResult {
     BuildResult build;
     SolveResult solve;
+    /// The colours written. A textured face's corners show the texel at the corner times the light
+    /// arriving there (light_colors), plus its emission texture's texel (texture.h).
     CornerColors colors;
     /// The light arriving at the same corners without the surface's colour, irradiance / pi (as
     /// Cycles' Diffuse bake with Direct and Indirect and without Color): for a surface that does

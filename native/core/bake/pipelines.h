@@ -7,7 +7,8 @@
 namespace radiosity::detail {
 
 /// The uniform bake's elements: at most `element_size`, cut along intersections and contacts.
-BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings);
+/// Progress phases as build_elements'.
+BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
 
 /// The media bake's elements: at most `element_size`, cut along intersections. The zonal exchange
 /// has no direct path for lamps (small_emitters.h): their quads stay in the factors, lit and

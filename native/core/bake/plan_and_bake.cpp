@@ -51,8 +51,8 @@ BakeResult as_bake_result(ZonalBakeResult&& zonal) {
 
 namespace detail {
 
-BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings) {
-    return build_elements(input, settings.element_size, settings.limits);
+BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+    return build_elements(input, settings.element_size, settings.limits, progress);
 }
 
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {

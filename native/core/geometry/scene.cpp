@@ -7,9 +7,11 @@
 
 #include "geometry/scene.h"
 
+#include "common/report_progress.h"
 #include "geometry/intersection_cut.h"
 #include "geometry/intersection_find.h"
 #include "geometry/polygon_geometry.h"
+#include "geometry/surface_textures.h"
 
 #include <glm/geometric.hpp>
 
@@ -48,6 +50,7 @@ void validate_arrays(const SceneInput& in) {
                 fail(f, "emission " + std::to_string(emitted) + " negative or not finite");
         }
     }
+    if (in.textures) validate_textures(*in.textures, in.face_count, std::size_t(in.face_offsets[in.face_count]));
 }
 
 /// Number of segments an edge of this length is cut into so that each is at most max_edge.
@@ -383,7 +386,7 @@ void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides)
 
 }  // namespace
 
-BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits) {
+BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits, const ProgressFn& progress) {
     if (!(max_edge >= 0.0f) || !std::isfinite(max_edge)) throw InputError("max_edge must be finite and >= 0");
     validate_arrays(in);
     BuildResult result;
@@ -404,7 +407,9 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
 
     auto cut = cuts.begin();
     std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
+    const std::size_t report_every = std::max<std::size_t>(1, in.face_count / 100);
     for (std::size_t f = 0; f < in.face_count; ++f) {
+        if (f % report_every == 0) detail::report_progress(progress, "elements", f, in.face_count);
         if (!usable[f]) continue;
         read_polygon(in, f, p, normal);
         const int32_t first = in.face_offsets[f];
@@ -434,6 +439,8 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         out.lamp.assign(out.size(), 0);
         for (std::size_t e = 0; e < out.size(); ++e) out.lamp[e] = emits_front_only(in, std::size_t(out.polygon[e]));
     }
+    detail::report_progress(progress, "elements", in.face_count, in.face_count);
+    if (in.textures) detail::texture_elements(in, out, progress);
     return result;
 }
 

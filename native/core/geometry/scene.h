@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/types.h"
+#include "geometry/texture.h"
 
 #include <array>
 #include <cstdint>
@@ -25,6 +26,9 @@ struct SceneInput {
     /// face_count flags: an emitting face that emits from its front only, as Cycles' area lamps do
     /// (other emitting faces emit from both sides, Elements::side). May be null: none.
     const uint8_t* front_only = nullptr;
+    /// Image textures that vary the faces' reflectance and emission about their mean (texture.h).
+    /// May be null: every face is its flat colour.
+    const SurfaceTextures* textures = nullptr;
 };
 
 /// The unknowns of the radiosity system: small planar triangles or quads, each a uniform
@@ -78,6 +82,15 @@ struct SkippedPolygon {
     Defect defect;
 };
 
+/// Colours at the corners of the elements and of the input polygons: what a bake writes
+/// (output/interpolation.h fills them from the elements' radiance).
+struct CornerColors {
+    /// Per corner of each element (4 per element; the 4th unused for triangles).
+    std::vector<Rgb> element_corner;
+    /// Per input corner (SceneInput's corner order); zero for skipped polygons.
+    std::vector<Rgb> input_corner;
+};
+
 struct BuildResult {
     Elements elements;
     std::vector<SkippedPolygon> skipped;  ///< never used silently: callers report these
@@ -118,8 +131,11 @@ struct ElementLimits {
 /// it along the lines where other polygons pass through it (`limits.cut_intersections`). Every
 /// element of an emitting polygon (emission > 0 in any channel) gets a back side (Elements::side),
 /// after all the polygons' elements.
+/// Textured faces (SceneInput::textures) give their elements their mean colour over the element.
 /// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
 /// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.
-BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {});
+/// Progress phase "elements": polygons subdivided, of all polygons; then "textures" (elements).
+BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {},
+                           const ProgressFn& progress = {});
 
 }  // namespace radiosity

@@ -13,13 +13,6 @@
 
 namespace radiosity {
 
-struct CornerColors {
-    /// Per corner of each element (4 per element; the 4th unused for triangles).
-    std::vector<Rgb> element_corner;
-    /// Per input corner (SceneInput's corner order); zero for skipped polygons.
-    std::vector<Rgb> input_corner;
-};
-
 /// `material` is SceneInput::material (may be null), `hard_edge_angle` in radians.
 /// `corner_light` (optional, 4 per element): light known at each element corner itself (the
 /// lamps', evaluated there), added to the corners interpolated from `radiance` as its mean over
