@@ -1,9 +1,9 @@
 """Each lamp type (point, spot, sun, area) lighting a Diffuse BSDF and Principled BSDFs of
-roughness 0, 0.5 and 1, baked through the panel at Medium and by this Blender's own Cycles, compared
+roughness 0, 0.25, 0.5, 0.75 and 1, baked through the panel at Medium and by this Blender's own Cycles, compared
 corner by corner per material.
 
-The scene: a 2 x 2 m floor in four strips of one base colour (Diffuse, then Principled at roughness
-0, 0.5, 1) and nothing else, so all its light is direct and the radiosity error (the final
+The scene: a 2 x 2 m floor in strips of one base colour (Diffuse, then the Principled BSDFs) and
+nothing else, so all its light is direct and the radiosity error (the final
 gather's) is well below the tolerance (a grey wall behind it was 1.5% dark beside Cycles, from the
 interreflection at their seam). Cycles' Diffuse bake (direct, indirect and colour) is the
 reference: the light each surface reflects diffusely, without the Principled's view-dependent
@@ -25,13 +25,14 @@ import scenes  # noqa: E402
 args = harness.arguments()
 harness.install_addon(args.addon_zip)
 
-ROOM, CELLS = 2.0, 16
+ROOM, CELLS = 2.0, 18
 BASE = (0.6, 0.6, 0.6)
 SAMPLES_PER_HALF = 1024
 MAX_CYCLES_NOISE = 0.01
 MAX_RELATIVE_RMS = 0.02
-# The floor's strips, in material slots 0-3.
-STRIPS = ("Diffuse", "Principled roughness 0", "Principled roughness 0.5", "Principled roughness 1")
+ROUGHNESS = (0.0, 0.25, 0.5, 0.75, 1.0)
+# The floor's strips, in material slots 0, 1, ...
+STRIPS = ("Diffuse",) + tuple("Principled roughness %g" % r for r in ROUGHNESS)
 
 
 def principled(name, roughness):
@@ -50,7 +51,7 @@ def floor():
     pieces = [scenes.grid((i * strip, 0, 0), (strip, 0, 0), (0, ROOM, 0), columns, CELLS) + (i,)
               for i in range(len(STRIPS))]
     materials = [scenes.diffuse(STRIPS[0], BASE)]
-    materials += [principled(name, roughness) for name, roughness in zip(STRIPS[1:], (0.0, 0.5, 1.0))]
+    materials += [principled(name, roughness) for name, roughness in zip(STRIPS[1:], ROUGHNESS)]
     return scenes.mesh_object("Floor", pieces, materials)
 
 
