@@ -93,9 +93,11 @@ def use_unbiased_cycles(samples, seed, bounces=128, volume_bounces=0, transparen
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
 
 
-def cycles_corner_bake(obj, samples, seed):
+def cycles_corner_bake(obj, samples, seed, diffuse_only=False):
     """(corners, 3) colours of Cycles' Combined bake of `obj` into a new colour attribute 'Cycles
-    <seed>', with use_unbiased_cycles(samples, seed)."""
+    <seed>', with use_unbiased_cycles(samples, seed). `diffuse_only`: its Diffuse bake (direct,
+    indirect and colour) instead, the light a surface reflects diffusely, without the glossy
+    highlights a Combined bake adds for a Principled BSDF."""
     use_unbiased_cycles(samples, seed)
     bpy.context.scene.render.bake.target = "VERTEX_COLORS"
     name = "Cycles %d" % seed
@@ -107,7 +109,12 @@ def cycles_corner_bake(obj, samples, seed):
             other.select_set(False)
     obj.select_set(True)
     bpy.context.view_layer.objects.active = obj
-    assert bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS") == {"FINISHED"}
+    if diffuse_only:
+        result = bpy.ops.object.bake(type="DIFFUSE", pass_filter={"DIRECT", "INDIRECT", "COLOR"},
+                                     target="VERTEX_COLORS")
+    else:
+        result = bpy.ops.object.bake(type="COMBINED", target="VERTEX_COLORS")
+    assert result == {"FINISHED"}
     return corner_colors(obj.data, name)
 
 

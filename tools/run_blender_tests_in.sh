@@ -11,9 +11,11 @@
 #              build-SUITE-embree3/), for checking that _core does not bind to Blender's Embree 4
 #   JOBS=N     build and test jobs (default: the number of cores)
 #   TARGET=T   build only target T (e.g. addon_zip, enough for the tests inside Blender)
+#   CACHED_BUILD=1  build inside the chroot instead, in /var/cache/bake-radiosity-build/<this
+#              worktree's path, hashed> (kept with the chroot between runs on this machine: CI)
 # Prints the time each phase took. Needs root (chroot).
 set -euo pipefail
-[ $# -ge 1 ] || { sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+[ $# -ge 1 ] || { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 suite=$1; shift
 root=$(cd "$(dirname "$0")/.." && pwd)
 chroot_tool=$root/tools/blender_chroot.sh
@@ -30,6 +32,12 @@ phase() { local now; now=$(date +%s); echo "== $1: $(( now - phase_start )) s" >
 
 "$chroot_tool" "$suite"
 phase "chroot ready ($("$chroot_tool" "$suite" path))"
+
+if [ "${CACHED_BUILD:-}" = 1 ]; then
+  # CMake ties a build directory to its source path: one directory per checkout path.
+  build=/var/cache/bake-radiosity-build/$build-$(printf '%s' "$root" | sha1sum | cut -c1-12)
+  echo "build directory (inside the chroot): $build" >&2
+fi
 
 if [ "${EMBREE:-}" = 3 ]; then
   dir=$("$chroot_tool" "$suite" path)

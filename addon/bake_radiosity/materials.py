@@ -12,6 +12,7 @@ texture varies its reflectance and its emission about that mean (TextureUse, one
 from dataclasses import dataclass, field
 from typing import Optional
 
+import bpy
 import numpy as np
 
 from . import textures
@@ -20,6 +21,12 @@ from . import textures
 DEFAULT_REFLECTANCE = (0.8, 0.8, 0.8)
 # The core needs reflectance strictly below 1 for its iterations to converge.
 MAX_REFLECTANCE = 0.999
+# From Blender 4.0 on, Cycles' Principled BSDF lays its dielectric specular layer over the diffuse
+# one and takes the layer's albedo off the diffuse weight (svm_node_closure_bsdf,
+# closure_layering_weight), for a bake at normal incidence. That albedo is F0 times a factor of the
+# roughness from Cycles' tables; the factor at roughness 0, 0.5, 1, measured from Cycles 5.2's
+# Diffuse bake at IOR 1.5 (blender_test_lamps: Principled 4.16%, 3.88%, 1.40% above Lambert).
+SPECULAR_ALBEDO_OVER_F0 = ((0.0, 0.5, 1.0), (1.0, 0.934, 0.345))
 
 
 @dataclass
@@ -161,9 +168,25 @@ def _principled(node, groups, weight, images):
     strength, more = _number(node.inputs["Emission Strength"], groups)
     problems += more
     # Metals have no diffuse lobe: only the dielectric part reflects diffusely.
-    return Surface(weight * base * (1.0 - metallic), weight * emission * strength, problems,
-                   reflectance_texture=_scaled(base_texture, weight * (1.0 - metallic)),
+    diffuse = 1.0 - metallic
+    if bpy.app.version >= (4, 0, 0):
+        layer, more = _under_specular_layer(node, groups)
+        diffuse, problems = diffuse * layer, problems + more
+    return Surface(weight * base * diffuse, weight * emission * strength, problems,
+                   reflectance_texture=_scaled(base_texture, weight * diffuse),
                    emission_texture=_scaled(emission_texture, weight * strength))
+
+
+def _under_specular_layer(node, groups):
+    """The share of a 4.x Principled BSDF's diffuse weight its specular layer leaves (see
+    SPECULAR_ALBEDO_OVER_F0), and problems."""
+    ior, problems = _number(node.inputs["IOR"], groups)
+    level, more = _number(node.inputs["Specular IOR Level"], groups)
+    roughness, more2 = _number(node.inputs["Roughness"], groups)
+    tint, more3 = _color(node.inputs["Specular Tint"], groups)
+    f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * level * max(float(np.max(tint)), 0.0)
+    albedo = f0 * np.interp(min(max(roughness, 0.0), 1.0), *SPECULAR_ALBEDO_OVER_F0)
+    return 1.0 - min(albedo, 1.0), problems + more + more2 + more3
 
 
 def _combination(node, groups, weight, images):

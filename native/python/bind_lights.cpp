@@ -62,6 +62,7 @@ Lights parse_lights(const py::list& lamps) {
                 throw InputError("light " + std::to_string(i) + ": half_angle must be in (0, pi/2], blend in [0, 1]");
             light.cos_half_angle = static_cast<float>(std::cos(half_angle));
             light.smooth = static_cast<float>((1.0 - std::cos(half_angle)) * blend);
+            if (lamp.contains("cosine_profile")) light.cosine_profile = lamp["cosine_profile"].cast<bool>();
         }
         lights.points.push_back(light);
     }

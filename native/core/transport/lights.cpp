@@ -19,9 +19,10 @@ float spot_profile(const PointLight& light, const Vec3& direction_from_light) {
     const float cos_angle = glm::dot(direction_from_light, light.direction);
     if (cos_angle <= light.cos_half_angle) return 0.0f;
     const float t = cos_angle - light.cos_half_angle;
-    if (light.smooth <= 0.0f || t >= light.smooth) return cos_angle;
+    const float falloff = light.cosine_profile ? cos_angle : 1.0f;
+    if (light.smooth <= 0.0f || t >= light.smooth) return falloff;
     const float s = t / light.smooth;
-    return cos_angle * s * s * (3.0f - 2.0f * s);
+    return falloff * s * s * (3.0f - 2.0f * s);
 }
 
 namespace {

@@ -20,6 +20,8 @@ struct PointLight {
     Vec3 direction{0.0f, 0.0f, -1.0f};  ///< spot axis (where it points), unit
     float cos_half_angle = -1.0f;       ///< cos(spot_size / 2); -1 = point lamp
     float smooth = 0.0f;                ///< Cycles' spot_smooth = (1 - cos_half_angle) * spot_blend
+    bool cosine_profile = true;         ///< the cone's smoothstep times cos(angle off the axis), as
+                                        ///< Cycles 3.x; Cycles 4.0 and later leave the cosine out
 };
 
 /// A distant lamp: parallel light travelling along `direction`, `irradiance` on a plane facing it.

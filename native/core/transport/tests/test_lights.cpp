@@ -104,6 +104,9 @@ TEST(SpotLight, ConeAndCyclesFalloff) {
     spot.smooth = (1.0f - spot.cos_half_angle) * 0.5f;
     const float t = (std::cos(0.4f) - spot.cos_half_angle) / spot.smooth, s = t * t * (3 - 2 * t);
     EXPECT_NEAR(spot_profile(spot, inside), std::cos(0.4f) * s, 1e-6);
+    spot.cosine_profile = false;  // Cycles 4.0 and later: the smoothstep alone
+    EXPECT_NEAR(spot_profile(spot, inside), s, 1e-6);
+    EXPECT_FLOAT_EQ(spot_profile(spot, glm::normalize(Vec3(0, 0, -1))), 1.0f);
 
     // On the floor: nothing outside the cone, the profile times the point law inside.
     const auto scene = floor_scene(2.0f);
