@@ -2,6 +2,7 @@
 /// @brief Direct light and one bounce of gathered indirect light at the output corners (final_gather.h).
 #include "final_gather.h"
 
+#include "corner_approach.h"
 #include "hr_visibility.h"
 #include "lamp_points.h"
 #include "parallel_rows.h"
@@ -64,19 +65,22 @@ public:
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
     /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
     /// same vertex picks the same point: the buried test does not read the solution).
-    bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, uint32_t place, Rgb& out,
-                     Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known) const {
+    bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
+                     Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
         const Vec3 n = elements_.normal[e];
         const uint32_t seed = mix_seed(place, 0x5EEDU);
-        // A hair into the element; if that is buried, further in, then further into the polygon
-        // (its element may lie wholly under what buries it: a floor cut along a wall's footprint).
+        // A hair into the element (along the corner's approach, corner_approach.h, if it has one);
+        // if that is buried, further in, then further into the polygon (its element may lie wholly
+        // under what buries it: a floor cut along a wall's footprint).
         std::array<Vec3, 6> candidates;
         int count = 0;
         if (to_centre > 0.0f) {
-            candidates[count++] = corner + (std::min(1e-3f * to_centre, 1e-4f * scene_size_) / to_centre) * towards;
+            const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
+            const bool approached = glm::dot(approach, approach) > 0.0f;
+            candidates[count++] = corner + (approached ? hair * approach : (hair / to_centre) * towards);
             candidates[count++] = corner + 0.1f * towards;
             candidates[count++] = corner + 0.5f * towards;
             const Vec3 inwards = polygon_centre - corner;
@@ -246,10 +250,12 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
                           const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
-                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
-                          CornerColors& colors, CornerColors& light_colors, const ProgressFn& progress) {
+                          const FinalGatherSettings& settings, const int32_t* material, const int32_t* face_offsets,
+                          std::size_t face_count, float hard_edge_angle, CornerColors& colors,
+                          CornerColors& light_colors, const ProgressFn& progress) {
     GatherCounts counts;
     if (elements.size() == 0) return counts;
+    const std::vector<Vec3> approach = corner_approach(elements, face_offsets, face_count);
     std::size_t places = 0;
     const std::vector<int32_t> place = weld_points(elements.vertices, weld_tolerance(elements.vertices), places);
     const std::vector<uint8_t> seam = seam_vertices(elements, place, places);
@@ -322,8 +328,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             const std::size_t e = std::size_t(element_at[points[i]]);
             Rgb L, H;
             float share = 0.0f;
-            if (gatherer.radiance_at(points[i], e, polygon_centre(e), uint32_t(place[points[i]]), L, H, share,
-                                     direct[i], pass > 0) &&
+            if (gatherer.radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
+                                     uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
