@@ -125,8 +125,8 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
         const detail::GatherCounts counts =
             detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.world,
                                  settings.final_gather,
-                                 input.material, settings.hard_edge_angle, result.colors, result.light_colors,
-                                 progress);
+                                 input.material, input.face_offsets, input.face_count, settings.hard_edge_angle,
+                                 result.colors, result.light_colors, progress);
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);

@@ -2,14 +2,15 @@
 /// @brief Direct light and one bounce of gathered indirect light at the output corners (final_gather.h).
 #include "output/final_gather.h"
 
-#include "visibility/ray_tracer.h"
-#include "transport/lamp_points.h"
 #include "common/parallel_rows.h"
-#include "transport/near_field.h"
-#include "visibility/shadow_ray.h"
 #include "common/stratified.h"
+#include "output/corner_approach.h"
 #include "geometry/weld.h"
+#include "transport/lamp_points.h"
+#include "transport/near_field.h"
 #include "transport/world_light.h"
+#include "visibility/ray_tracer.h"
+#include "visibility/shadow_ray.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -30,6 +31,14 @@ struct Emitter {
     int count;
     glm::dvec3 normal;
     Rgb radiance;
+};
+
+/// What a point's rays read of the corner field right at the seams next to it (closer than kSeam
+/// of the element hit): the light there is the seam vertices' own gathered light, so the point's
+/// light is linear in it, light = direct + max(indirect + sum of weight x field[slot], 0).
+struct SeamReads {
+    Rgb direct{0.0}, indirect{0.0};                    ///< direct light; the other rays' indirect light
+    std::vector<std::pair<int32_t, double>> slots;    ///< (slot 4 e + k of the field, weight), each slot once
 };
 
 /// Each element's other side (-1: one-sided): add_back_sides appends the back sides in the order of
@@ -64,19 +73,23 @@ public:
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
     /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
     /// same vertex picks the same point: the buried test does not read the solution).
-    bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, uint32_t place, Rgb& out,
-                     Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known) const {
+    bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
+                     Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
+                     SeamReads* reads = nullptr) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
         const Vec3 n = elements_.normal[e];
         const uint32_t seed = mix_seed(place, 0x5EEDU);
-        // A hair into the element; if that is buried, further in, then further into the polygon
-        // (its element may lie wholly under what buries it: a floor cut along a wall's footprint).
+        // A hair into the element (along the corner's approach, corner_approach.h, if it has one);
+        // if that is buried, further in, then further into the polygon (its element may lie wholly
+        // under what buries it: a floor cut along a wall's footprint).
         std::array<Vec3, 6> candidates;
         int count = 0;
         if (to_centre > 0.0f) {
-            candidates[count++] = corner + (std::min(1e-3f * to_centre, 1e-4f * scene_size_) / to_centre) * towards;
+            const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
+            const bool approached = glm::dot(approach, approach) > 0.0f;
+            candidates[count++] = corner + (approached ? hair * approach : (hair / to_centre) * towards);
             candidates[count++] = corner + 0.1f * towards;
             candidates[count++] = corner + 0.5f * towards;
             const Vec3 inwards = polygon_centre - corner;
@@ -91,9 +104,10 @@ public:
             const Vec3 x = candidates[i];
             const Vec3 origin = x + (1e-5f * scene_size_) * n;
             Rgb indirect(0.0);
-            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share)) continue;  // buried: further in
+            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
             if (!direct_known) direct_light = direct(x, origin, n, seed);
+            if (reads != nullptr) reads->direct = direct_light;
             light = direct_light + indirect;
             out = emitted_[e] + elements_.reflectance[e] * light;
             return true;
@@ -104,13 +118,15 @@ public:
 private:
     /// Mean of (radiance - own emission) over the first hits of cosine-weighted rays; false when
     /// more than half of them hit a back face nearer than `near`. `seam_share`: the share of rays
-    /// that met another surface right at the point (closer than kSeam of the element hit).
+    /// that met another surface right at the point (closer than kSeam of the element hit). With
+    /// `reads`, what those rays read of the field goes there as weights, the rest as its indirect.
     bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out,
-                         float& seam_share) const {
+                         float& seam_share, SeamReads* reads) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
-        Rgb sum(0.0);
+        Rgb sum(0.0), rest(0.0);
+        std::vector<std::pair<int32_t, double>> slots;
         int back_near = 0, at_seam = 0;
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
@@ -120,8 +136,16 @@ private:
             const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), direction);
             if (hit.patch < 0) continue;
             if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
-                sum += radiance_near(hit) - emitted_[hit.patch];
-                at_seam += hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
+                const Rgb seen = radiance_near(hit) - emitted_[hit.patch];
+                sum += seen;
+                const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
+                at_seam += seam;
+                if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
+                    rest -= emitted_[hit.patch];
+                    add_weights(hit, slots);
+                } else {
+                    rest += seen;
+                }
             } else if (hit.distance < near) {
                 ++back_near;
             }
@@ -129,7 +153,28 @@ private:
         if (2 * back_near > rays) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
+        if (reads != nullptr) {
+            std::sort(slots.begin(), slots.end());
+            reads->slots.clear();
+            for (const auto& [slot, weight] : slots) {
+                if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
+                reads->slots.back().second += weight / double(rays);
+            }
+            reads->indirect = rest / double(rays);
+        }
         return true;
+    }
+
+    /// The weights radiance_near gives the hit element's corner slots.
+    void add_weights(const hr::Visibility::Hit& hit, std::vector<std::pair<int32_t, double>>& slots) const {
+        const int32_t h = hit.patch;
+        const double u = std::clamp(double(hit.u), 0.0, 1.0), v = std::clamp(double(hit.v), 0.0, 1.0);
+        if (elements_.is_triangle(std::size_t(h))) {
+            for (const auto& [k, w] : {std::pair{0, 1.0 - u - v}, {1, u}, {2, v}}) slots.emplace_back(4 * h + k, w);
+        } else {
+            for (const auto& [k, w] : {std::pair{0, (1.0 - u) * (1.0 - v)}, {1, u * (1.0 - v)}, {2, u * v}, {3, (1.0 - u) * v}})
+                slots.emplace_back(4 * h + k, w);
+        }
     }
 
     /// `hit`, or where it is on an emitting polygon's element seen from behind, the same point of
@@ -242,14 +287,42 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
     return seam;
 }
 
+/// Solves the seam points' light, each linear in the field at the seam vertices (SeamReads), by
+/// Jacobi sweeps until no value changes by more than 1e-6 of the largest (at most 200 sweeps):
+/// the same as gathering those points again and again from each other's values.
+template <typename WriteField>
+void solve_seams(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<int32_t>& points,
+                 const std::vector<int32_t>& element_at, const std::vector<SeamReads>& reads,
+                 const std::vector<uint8_t>& recorded, std::vector<Rgb>& field, std::vector<Rgb>& value,
+                 std::vector<Rgb>& light, const WriteField& write_field) {
+    for (int sweep = 0; sweep < 200; ++sweep) {
+        double change = 0.0, largest = 0.0;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            if (!recorded[i]) continue;
+            const std::size_t e = std::size_t(element_at[points[i]]);
+            Rgb indirect = reads[i].indirect;
+            for (const auto& [slot, weight] : reads[i].slots) indirect += weight * field[std::size_t(slot)];
+            light[i] = reads[i].direct + glm::max(indirect, Rgb(0.0));
+            const Rgb L = emitted[e] + elements.reflectance[e] * light[i];
+            change = std::max(change, max_channel(glm::abs(L - value[i])));
+            largest = std::max(largest, max_channel(L));
+            value[i] = L;
+        }
+        write_field(recorded);
+        if (change <= 1e-6 * largest) break;
+    }
+}
+
 }  // namespace
 
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
                           const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
-                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
-                          CornerColors& colors, CornerColors& light_colors, const ProgressFn& progress) {
+                          const FinalGatherSettings& settings, const int32_t* material, const int32_t* face_offsets,
+                          std::size_t face_count, float hard_edge_angle, CornerColors& colors,
+                          CornerColors& light_colors, const ProgressFn& progress) {
     GatherCounts counts;
     if (elements.size() == 0) return counts;
+    const std::vector<Vec3> approach = corner_approach(elements, face_offsets, face_count);
     std::size_t places = 0;
     const std::vector<int32_t> place = weld_points(elements.vertices, weld_tolerance(elements.vertices), places);
     const std::vector<uint8_t> seam = seam_vertices(elements, place, places);
@@ -301,20 +374,33 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
 
     // The first pass reads the interpolated solution. Points whose rays met a seam read the other
     // surface's light right at it, where interpolation is least like the light (a room's corner
-    // is half lit by the walls' light at the corner): the next passes gather them again from the
-    // last pass's values at the seams' vertices, and the last pass the output points only. On the
-    // Cornell box against Cycles (lab/final_gather), Draft: 1 pass 1.28% RMS (seam corners
-    // 2.07%), 2 passes 0.78%, 3 passes 0.68% (0.76%), 4 passes 0.66%, for 0.44, 0.54, 0.62 and
-    // 0.70 CPU s; Medium 1.00%, 0.75%, 0.72%, 0.71%.
+    // is half lit by the walls' light at the corner): the second pass gathers them again from the
+    // first pass's values at the seams' vertices, keeping what they read at the seams as weights.
+    // Then the seams' light is solved: each of those points' light is linear in the field at the
+    // seam vertices, which are such points too (solve_seams). Passes alone converge slowly where
+    // two or three surfaces meet: a room's corner sees the other two walls' corner light in three
+    // quarters of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
-    std::vector<uint8_t> done(points.size(), 0);
+    std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
+    std::vector<SeamReads> reads(points.size());
     std::vector<std::size_t> todo(points.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
-    const int passes = 3;
+    auto write_field = [&](const std::vector<uint8_t>& which) {  // the field at those points' vertices
+        std::vector<int32_t> gathered_index(elements.vertices.size(), -1);
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if (which[i]) gathered_index[points[i]] = int32_t(i);
+        for (std::size_t e = 0; e < elements.size(); ++e)
+            for (int k = 0; k < elements.corner_count(e); ++k) {
+                const int32_t i = gathered_index[elements.corners[e][k]];
+                if (i >= 0) field[4 * e + k] = value[std::size_t(i)];
+            }
+    };
+    const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
+        const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
                                 visibility, scene_size);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
@@ -322,31 +408,27 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             const std::size_t e = std::size_t(element_at[points[i]]);
             Rgb L, H;
             float share = 0.0f;
-            if (gatherer.radiance_at(points[i], e, polygon_centre(e), uint32_t(place[points[i]]), L, H, share,
-                                     direct[i], pass > 0) &&
+            if (gatherer.radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
+                                     uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
+                                     last ? &reads[i] : nullptr) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
                 light[i] = H;
                 done[i] = 1;
+                recorded[i] = last;
                 seam_share[i] = share;
             }
             return true;
         });
         // The field at gathered vertices becomes their gathered light; next, the points whose rays
-        // met a seam (output points only in the last pass).
-        std::vector<int32_t> gathered_index(elements.vertices.size(), -1);
-        for (std::size_t i = 0; i < points.size(); ++i)
-            if (done[i]) gathered_index[points[i]] = int32_t(i);
-        for (std::size_t e = 0; e < elements.size(); ++e)
-            for (int k = 0; k < elements.corner_count(e); ++k) {
-                const int32_t i = gathered_index[elements.corners[e][k]];
-                if (i >= 0) field[4 * e + k] = value[std::size_t(i)];
-            }
+        // met a seam.
+        write_field(done);
         todo.clear();
         for (std::size_t i = 0; i < points.size(); ++i)
-            if (done[i] && (is_output[points[i]] || pass + 2 < passes) && seam_share[i] > 0.0f) todo.push_back(i);
+            if (done[i] && seam_share[i] > 0.0f) todo.push_back(i);
     }
+    solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the
     // mean of its faces'); points still buried, or not finite, keep the interpolated colour.

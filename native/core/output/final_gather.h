@@ -17,8 +17,9 @@
 ///    colours blended at the hit point (smooth next to seams, where the flat element value is
 ///    not); on an emitter's back side, which has no corner colours, its solved value. Misses and
 ///    back faces bring nothing (as in the hemi-cube).
-/// The point x is the corner's element vertex moved a hair into its element (towards the
-/// element's centre: 1e-3 of the way, at most 1e-4 of the scene's size) and rays leave from
+/// The point x is the corner's element vertex moved a hair into its element (1e-3 of the way to the
+/// element's centre, at most 1e-4 of the scene's size; an input corner along its approach,
+/// corner_approach.h, as Cycles bakes it; other vertices towards the centre) and rays leave from
 /// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
 /// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
 /// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
@@ -62,7 +63,8 @@ struct GatherCounts {
 /// gathered vertex, then "gather seams" for each later pass; throws Cancelled.
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
                           const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
-                          const FinalGatherSettings& settings, const int32_t* material, float hard_edge_angle,
-                          CornerColors& colors, CornerColors& light_colors, const ProgressFn& progress);
+                          const FinalGatherSettings& settings, const int32_t* material, const int32_t* face_offsets,
+                          std::size_t face_count, float hard_edge_angle, CornerColors& colors,
+                          CornerColors& light_colors, const ProgressFn& progress);
 
 }  // namespace radiosity::detail

@@ -1,13 +1,19 @@
 /// @file test_final_gather.cpp
 /// @brief The uniform bake's final gather at the output corners (bake.h FinalGatherSettings):
-/// exact direct light from an emitter and from a point lamp where interpolation is far off, the
-/// furnace at every corner (seams of a closed box), determinism, and cancelling.
+/// exact direct light from an emitter and from a point lamp where interpolation is far off, floor
+/// corners at a block's corner lit from the side Cycles bakes them from, the exact light on both
+/// sides of a contact line, the furnace at every corner (seams of a closed box), determinism, and
+/// cancelling.
 #include "bake/bake.h"
 
 #include "testing/test_util.h"
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -73,6 +79,111 @@ double corner_factor(double a, double b, double c) {
     return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
             Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
            (2 * M_PI);
+}
+
+/// Lambert's contour integral: the factor from a point at the origin with normal n to the polygon
+/// `corners` (relative to the point, counter-clockwise seen from the point's side).
+double lambert_factor(const std::vector<glm::dvec3>& corners, const glm::dvec3& n) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const glm::dvec3 a = glm::normalize(corners[i]), b = glm::normalize(corners[(i + 1) % corners.size()]);
+        sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(glm::normalize(glm::cross(a, b)), n);
+    }
+    return std::abs(sum) / (2.0 * M_PI);
+}
+
+/// Adds the five faces (no bottom, outward normals) of the box [lo, hi].
+void add_block(test::SceneArrays& s, const Vec3& lo, const Vec3& hi, const Rgb& rho) {
+    const float x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
+    s.add_quad({x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, rho);  // +z
+    s.add_quad({x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}, rho);  // -y
+    s.add_quad({x1, y1, z0}, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, rho);  // +y
+    s.add_quad({x0, y1, z0}, {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, rho);  // -x
+    s.add_quad({x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}, rho);  // +x
+}
+
+TEST(FinalGather, FloorCornersAtABlocksFootSeeWhatCyclesSeesThere) {
+    // A black block on the quadrant x < 0 < y stands on a floor of three quads around the origin,
+    // under a unit square emitter over the origin. The light is discontinuous at the block's foot
+    // corner: a floor corner there is lit by what it sees from the side Cycles bakes it from, a
+    // hair from the vertex towards the centroid of the corner's first fan triangle. Seen from that
+    // close, the block hides the emitter's points in a wedge of directions: from the +y axis to the
+    // apex's direction for the quad beside its +x face, from the apex's direction to the -x axis
+    // beside its -y face, the quadrant behind it from the diagonal quad. L = rho Le F, F Lambert's
+    // factor of the rest of the square (nothing else lights the floor: the block and the emitter
+    // reflect nothing, and the floor does not see itself).
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), Le(1.0, 2.0, 0.5), black(0.0);
+    test::SceneArrays s;
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho);      // beside +x: the origin is corner 0
+    s.add_quad({0, -1, 0}, {1, -1, 0}, {1, 0, 0}, {0, 0, 0}, rho);    // diagonal: corner 3
+    s.add_quad({-1, -1, 0}, {0, -1, 0}, {0, 0, 0}, {-1, 0, 0}, rho);  // beside -y: corner 2
+    add_block(s, Vec3(-1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.4f), black);
+    add_emitter(s, h, Le);
+    // The visible part of the square at height h: from the direction where the wedge ends, round
+    // through the open side to where it starts (counter-clockwise seen from below: the point's side).
+    auto visible = [&](double from_degrees, double to_degrees) {  // wedge [from, to], counter-clockwise
+        std::vector<glm::dvec3> polygon{{0.0, 0.0, h}};
+        auto to_edge = [&](double degrees) {  // where the ray from the centre at this azimuth meets the square
+            const glm::dvec2 d(std::cos(degrees * M_PI / 180.0), std::sin(degrees * M_PI / 180.0));
+            return glm::dvec3(0.5 * d / std::max(std::abs(d.x), std::abs(d.y)), h);
+        };
+        polygon.push_back(to_edge(to_degrees));
+        for (const double corner : {45.0, 135.0, 225.0, 315.0, 405.0, 495.0, 585.0})
+            if (corner > to_degrees && corner < from_degrees + 360.0) polygon.push_back(to_edge(corner));
+        polygon.push_back(to_edge(from_degrees + 360.0));
+        return lambert_factor(polygon, glm::dvec3(0.0, 0.0, 1.0));
+    };
+    const double beside_x = visible(90.0, 180.0 + std::atan(0.5) * 180.0 / M_PI);   // approached along (2, 1)
+    const double diagonal = visible(90.0, 180.0);
+    const double beside_y = visible(180.0 + std::atan(2.0) * 180.0 / M_PI - 180.0, 180.0);  // along (-1, -2)
+    BakeSettings settings = gather_settings(0.125f, true);
+    settings.final_gather.shadow_rays = 4096;
+    const BakeResult r = bake(s.input(), settings);
+    const std::size_t corner[3] = {0, 7, 10};  // the quads' corners at the origin
+    const double factor[3] = {beside_x, diagonal, beside_y};
+    for (int q = 0; q < 3; ++q) {
+        const Rgb expected = rho * Le * factor[q];
+        const double error = worst_relative_error(r, {corner[q]}, expected);
+        std::printf("floor quad %d at the block's corner: %.6f (exact %.6f), relative error %.2e\n", q,
+                    r.colors.input_corner[corner[q]].g, expected.g, error);
+        EXPECT_LT(error, 5e-3) << q;
+    }
+}
+
+TEST(FinalGather, ContactLineBetweenAnEmittingFloorAndAWallIsExact) {
+    // A 20 m floor (y > 0) that emits Le and reflects rho_f, and a 20 m wall on its edge (the
+    // plane y = 0, facing +y) reflecting rho_w; nothing else. At the foot each sees the other's
+    // light at the foot in half its hemisphere (every ray towards it meets it there), so
+    //   wall:  L_w = rho_w (Le F + L_f,reflected / 2),  floor: L_f,reflected = rho_f L_w / 2,
+    // F the exact factor from the wall's foot to the floor: L_w = rho_w Le F / (1 - rho_w rho_f / 4).
+    // The gather's seam vertices read each other: their light is solved, not passed a few times.
+    const Rgb rho_f(0.9, 0.8, 0.7), rho_w(0.95, 0.9, 0.6), Le(1.0, 2.0, 0.5);
+    test::SceneArrays s;
+    const float a = 10.0f, b = 20.0f;
+    for (const float x0 : {-a, 0.0f}) {
+        s.add_quad({x0, 0, 0}, {x0 + a, 0, 0}, {x0 + a, b, 0}, {x0, b, 0}, rho_f, Le);  // floor, +z
+        s.add_quad({x0, 0, 0}, {x0, 0, b}, {x0 + a, 0, b}, {x0 + a, 0, 0}, rho_w);      // wall, +y
+    }
+    // Seen from a hair in front of the foot and above it (on the edge itself the formula is 0 / 0),
+    // of the floor in front of that point.
+    const double hair = 1e-7;
+    const glm::dvec3 p(0.0, hair, hair);
+    const double F = lambert_factor({glm::dvec3(-a, b, 0.0) - p, glm::dvec3(-a, hair, 0.0) - p,
+                                     glm::dvec3(a, hair, 0.0) - p, glm::dvec3(a, b, 0.0) - p},
+                                    glm::dvec3(0.0, 1.0, 0.0));
+    const Rgb wall = rho_w * Le * F / (1.0 - rho_w * rho_f / 4.0);
+    const Rgb floor = Le + rho_f * wall / 2.0;
+    BakeSettings settings = gather_settings(2.0f, true);
+    settings.final_gather.rays = 4096;
+    const BakeResult r = bake(s.input(), settings);
+    for (const std::size_t c : corners_at(s, Vec3(0.0f))) {
+        const bool on_wall = c % 8 >= 4;
+        const double error = worst_relative_error(r, {c}, on_wall ? wall : floor);
+        std::printf("%s corner at the foot: %.5f (exact %.5f), relative error %.2e\n", on_wall ? "wall" : "floor",
+                    r.colors.input_corner[c].g, (on_wall ? wall : floor).g, error);
+        EXPECT_LT(error, 5e-3) << c;  // the rays that read the floor further out read the solution there
+    }
 }
 
 TEST(FinalGather, CeilingOverAnEmittersBackIsExact) {
