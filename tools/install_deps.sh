@@ -8,7 +8,7 @@ packages=(
   libglm-dev libtbb-dev libembree-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb
   googletest libgtest-dev libbenchmark-dev
   blender xvfb xauth xdotool
-  flake8
+  flake8 clang-format
 )
 missing=()
 for p in "${packages[@]}"; do
