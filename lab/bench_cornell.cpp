@@ -72,7 +72,8 @@ void solve_time(benchmark::State& state) {
     const Elements& e = cornell_elements(static_cast<int>(state.range(0)));
     static std::map<int, SparseMatrix> matrices;
     auto found = matrices.find(static_cast<int>(state.range(0)));
-    if (found == matrices.end()) found = matrices.emplace(static_cast<int>(state.range(0)), compute_form_factors(e, 128)).first;
+    if (found == matrices.end())
+        found = matrices.emplace(static_cast<int>(state.range(0)), compute_form_factors(e, 128)).first;
     SolveSettings settings;
     settings.method = static_cast<Method>(state.range(1));
     SolveResult result;

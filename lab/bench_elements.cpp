@@ -3,8 +3,8 @@
 /// a 1e6-triangle terrain that intersects nothing, and the Cornell box. Argument: cut off (0) or on (1).
 /// And of interpolate_corners on the terrain's 1e6 elements (the last stage of every bake).
 
-#include "output/interpolation.h"
 #include "geometry/scene.h"
+#include "output/interpolation.h"
 #include "testing/test_util.h"
 
 #include <benchmark/benchmark.h>
@@ -29,9 +29,11 @@ const test::SceneArrays& terrain() {
         auto vertex = [&](int i, int j) { return j * (nx + 1) + i; };
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
-                for (const int32_t v : {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)}) s.corner_vertices.push_back(v);
+                for (const int32_t v : {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)})
+                    s.corner_vertices.push_back(v);
                 s.face_offsets.push_back(static_cast<int32_t>(s.corner_vertices.size()));
-                for (const int32_t v : {vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)}) s.corner_vertices.push_back(v);
+                for (const int32_t v : {vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)})
+                    s.corner_vertices.push_back(v);
                 s.face_offsets.push_back(static_cast<int32_t>(s.corner_vertices.size()));
             }
         const std::size_t faces = s.face_offsets.size() - 1;

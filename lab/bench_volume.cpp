@@ -40,7 +40,8 @@ float edge_for(const test::SceneArrays& scene, int target) {
 /// The box [0, 1]^3 full of grey fog, n^3 voxels.
 Medium fog(int n) {
     Medium m(Vec3(0.0f), 1.0f / n, {n, n, n});
-    for (std::size_t v = 0; v < m.voxel_count(); ++v) m.set(v, principled_volume(Rgb(0.8), 2.0, Rgb(0.0), 0.0, Rgb(0.0)));
+    for (std::size_t v = 0; v < m.voxel_count(); ++v)
+        m.set(v, principled_volume(Rgb(0.8), 2.0, Rgb(0.0), 0.0, Rgb(0.0)));
     return m;
 }
 
@@ -158,7 +159,8 @@ void zonal_merge(benchmark::State& state) {
     }
     state.counters["elements"] = double(runs[0].result.surfaces.build.elements.size());
     state.counters["time_ratio"] = runs[0].seconds / runs[1].seconds;
-    state.counters["matrix_ratio"] = double(runs[0].result.surfaces.matrix_bytes) / double(runs[1].result.surfaces.matrix_bytes);
+    state.counters["matrix_ratio"] =
+        double(runs[0].result.surfaces.matrix_bytes) / double(runs[1].result.surfaces.matrix_bytes);
     state.counters["peak_rss_ratio"] = runs[0].peak_GB / runs[1].peak_GB;
     // How far merging moved the walls (red channel), relative to their area-weighted mean radiance:
     // the mean difference, and the worst element's (relative to its own radiance it is meaningless

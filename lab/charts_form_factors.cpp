@@ -6,9 +6,9 @@
 /// repeated until 50 ms have passed.
 #include "charts.h"
 
+#include "testing/test_util.h"
 #include "transport/near_field.h"
 #include "transport/row_renderer.h"
-#include "testing/test_util.h"
 
 #include <glm/geometric.hpp>
 
@@ -40,7 +40,8 @@ std::vector<Case> cases() {
     // (uniform over the patch to 1e-6), F_large->small follows by reciprocity.
     test::SceneArrays under;
     under.add_quad({-1, -1, 0.1f}, {-1, 1, 0.1f}, {1, 1, 0.1f}, {1, -1, 0.1f}, Rgb(0.5), Rgb(1.0));
-    under.add_quad({-0.005f, -0.005f, 0}, {0.005f, -0.005f, 0}, {0.005f, 0.005f, 0}, {-0.005f, 0.005f, 0}, Rgb(0.5), Rgb(0));
+    under.add_quad({-0.005f, -0.005f, 0}, {0.005f, -0.005f, 0}, {0.005f, 0.005f, 0}, {-0.005f, 0.005f, 0}, Rgb(0.5),
+                   Rgb(0));
     const double F_sl = 4 * point_to_parallel_corner(1, 1, 0.1);
     return {
         {"opposed_point", test::opposed_unit_squares(1.0f), 1, 0, 0.239456, false},
@@ -86,8 +87,8 @@ void form_factors(const std::string& csv_path) {
                 SparseRow row;
                 const double seconds = time_per_call([&] { renderer.row(e, c.from, row); });
                 const double value = entry(row, c.to);
-                std::fprintf(out, "%s,%s,%d,%.6e,%.9g,%.9g,%.6e\n", c.name, near ? "near_field" : "hemicube", n, seconds,
-                             value, c.exact, value / c.exact - 1.0);
+                std::fprintf(out, "%s,%s,%d,%.6e,%.9g,%.9g,%.6e\n", c.name, near ? "near_field" : "hemicube", n,
+                             seconds, value, c.exact, value / c.exact - 1.0);
             }
     }
     std::fclose(out);
@@ -108,20 +109,23 @@ void aliasing(const std::string& csv_path) {
                 SparseRow row;
                 double sum = 0.0, worst = 0.0, seconds = 0.0;
                 for (int p = 0; p < 64; ++p) {
-                    const double azimuth = 2 * M_PI * std::fmod(p * 0.6180339887, 1.0), elevation = 0.2 + 1.2 * (p + 0.5) / 64;
+                    const double azimuth = 2 * M_PI * std::fmod(p * 0.6180339887, 1.0),
+                                 elevation = 0.2 + 1.2 * (p + 0.5) / 64;
                     const glm::dvec3 c(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                                        std::sin(elevation));
-                    const glm::dvec3 u = glm::normalize(glm::cross(-c, glm::dvec3(0.3, 0.5, 0.7))), v = glm::cross(-c, u);
+                    const glm::dvec3 u = glm::normalize(glm::cross(-c, glm::dvec3(0.3, 0.5, 0.7))),
+                                     v = glm::cross(-c, u);
                     const double h = side / 2.0;
                     auto at = [&](double a, double b) { return Vec3(c + a * u + b * v); };
                     test::SceneArrays s;
-                    s.add_quad({-0.05f, -0.05f, 0}, {0.05f, -0.05f, 0}, {0.05f, 0.05f, 0}, {-0.05f, 0.05f, 0}, Rgb(0.5), Rgb(0));
+                    s.add_quad({-0.05f, -0.05f, 0}, {0.05f, -0.05f, 0}, {0.05f, 0.05f, 0}, {-0.05f, 0.05f, 0}, Rgb(0.5),
+                               Rgb(0));
                     s.add_quad(at(-h, -h), at(h, -h), at(h, h), at(-h, h), Rgb(0.5), Rgb(0));
                     const Elements e = build_elements(s.input(), 0.0f).elements;
                     glm::dvec3 q[4];
                     for (int k = 0; k < 4; ++k) q[k] = glm::dvec3(e.vertices[e.corners[1][k]]);
-                    const double exact =
-                        point_to_polygon(glm::dvec3(e.centre[0]), glm::dvec3(e.normal[0]), q, 4, glm::dvec3(e.normal[1]));
+                    const double exact = point_to_polygon(glm::dvec3(e.centre[0]), glm::dvec3(e.normal[0]), q, 4,
+                                                          glm::dvec3(e.normal[1]));
                     const auto start = std::chrono::steady_clock::now();
                     renderer.row(e, 0, row);
                     seconds += seconds_since(start);
@@ -129,8 +133,8 @@ void aliasing(const std::string& csv_path) {
                     sum += error * error;
                     worst = std::max(worst, std::abs(error));
                 }
-                std::fprintf(out, "%g,%d,%d,%.6e,%.6e,%.6e\n", double(side), rotations, n, seconds / 64, std::sqrt(sum / 64),
-                             worst);
+                std::fprintf(out, "%g,%d,%d,%.6e,%.6e,%.6e\n", double(side), rotations, n, seconds / 64,
+                             std::sqrt(sum / 64), worst);
             }
     std::fclose(out);
 }

@@ -7,10 +7,10 @@
 #include "charts.h"
 
 #include "bake/bake.h"
-#include "transport/form_factors.h"
-#include "transport/near_field.h"
 #include "solve/solver.h"
 #include "testing/test_util.h"
+#include "transport/form_factors.h"
+#include "transport/near_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,8 +68,10 @@ double wall_leak(bool cut) {
         if (e.polygon[i] != 0) continue;
         float x_max = -1e9f;
         for (int k = 0; k < 4; ++k) x_max = std::max(x_max, e.vertices[e.corners[i][k]].x);
-        if (x_max > 0.0f) dark = std::max(dark, r.solve.radiance[i].g);
-        else lit += e.area[i] * r.solve.radiance[i].g, area += e.area[i];
+        if (x_max > 0.0f)
+            dark = std::max(dark, r.solve.radiance[i].g);
+        else
+            lit += e.area[i] * r.solve.radiance[i].g, area += e.area[i];
     }
     return dark / (lit / area);
 }
@@ -146,7 +148,8 @@ double reciprocity(int resolution, bool near_field) {
     for (std::size_t i = 0; i < e.size(); ++i)
         for (int64_t k = F.row_start[i]; k < F.row_start[i + 1]; ++k) {
             const int32_t j = F.col[k];
-            worst = std::max(worst, std::abs(e.area[i] * F.val[k] - e.area[j] * entry(std::size_t(j), int32_t(i))) / e.area[i]);
+            worst = std::max(
+                worst, std::abs(e.area[i] * F.val[k] - e.area[j] * entry(std::size_t(j), int32_t(i))) / e.area[i]);
         }
     return worst;
 }
@@ -179,7 +182,8 @@ void stability(const std::string& csv_path) {
     double footprint[2], ring[2];
     box_leak(false, footprint[0], ring[0]);
     box_leak(true, footprint[1], ring[1]);
-    row("box on floor 0.12 m", "brightest element under the box / lit", "cut off", "cut on", footprint[0], footprint[1]);
+    row("box on floor 0.12 m", "brightest element under the box / lit", "cut off", "cut on", footprint[0],
+        footprint[1]);
     row("box on floor 0.12 m", "worst outline element error / lit", "cut off", "cut on", ring[0], ring[1]);
     for (int n : {64, 256}) {
         const std::string name = "closed box reciprocity res " + std::to_string(n);

@@ -1,10 +1,10 @@
 #include "hierarchy_accuracy.h"
 
+#include "bake/bake.h"
 #include "charts.h"
+#include "hierarchy/hierarchy.h"
 #include "hierarchy_error.h"
 #include "hierarchy_scenes.h"
-#include "bake/bake.h"
-#include "hierarchy/hierarchy.h"
 
 #include <cstdio>
 #include <fstream>
@@ -91,12 +91,22 @@ std::vector<AccuracyCase> accuracy_cases() {
     // (lamp detail two levels finer), and leaves four times coarser with lamp detail four levels
     // finer: the same finest lamp detail from far fewer links.
     std::vector<AccuracyCase> cases;
-    cases.push_back({"cornell", {test::cornell_box(), {}, 0.0f}, {0.2f, 0.1f, 0.07f, 0.05f},
-                     {{"hierarchy", 0.05f, 2}, {"hierarchy_coarse", 0.2f, 4}}, {0.2, 0.1, 0.05, 0.02, 0.01}, 0.025f,
-                     512, 0.004f});
-    cases.push_back({"shadow_room", shadow_room(), {0.4f, 0.2f, 0.14f, 0.1f, 0.07f, 0.05f},
-                     {{"hierarchy", 0.1f, 2}, {"hierarchy_coarse", 0.4f, 4}}, {0.2, 0.1, 0.05, 0.02, 0.01}, 0.05f,
-                     256, 0.01f});
+    cases.push_back({"cornell",
+                     {test::cornell_box(), {}, 0.0f},
+                     {0.2f, 0.1f, 0.07f, 0.05f},
+                     {{"hierarchy", 0.05f, 2}, {"hierarchy_coarse", 0.2f, 4}},
+                     {0.2, 0.1, 0.05, 0.02, 0.01},
+                     0.025f,
+                     512,
+                     0.004f});
+    cases.push_back({"shadow_room",
+                     shadow_room(),
+                     {0.4f, 0.2f, 0.14f, 0.1f, 0.07f, 0.05f},
+                     {{"hierarchy", 0.1f, 2}, {"hierarchy_coarse", 0.4f, 4}},
+                     {0.2, 0.1, 0.05, 0.02, 0.01},
+                     0.05f,
+                     256,
+                     0.01f});
     return cases;
 }
 
@@ -134,11 +144,13 @@ void accuracy(const std::string& csv_path) {
             const ColourError eu = colour_error(samples, got, u_colours);
             csv << c.name << "," << method << "," << parameter << "," << min_size << "," << lamp_levels << ","
                 << b.elements << "," << b.output_elements << "," << b.links << "," << b.seconds << "," << e.rms << ","
-                << e.max << "," << eu.rms << "," << eu.max << "," << unlocated << "\n" << std::flush;
-            std::printf("%-12s %-20s %8.4g elements %8zu output %8zu  %7.2f s  rms %.4f max %.3f  (vs uniform ref: rms "
-                        "%.4f max %.3f)  unlocated %zu\n",
-                        c.name.c_str(), method.c_str(), parameter, b.elements, b.output_elements, b.seconds, e.rms,
-                        e.max, eu.rms, eu.max, unlocated);
+                << e.max << "," << eu.rms << "," << eu.max << "," << unlocated << "\n"
+                << std::flush;
+            std::printf(
+                "%-12s %-20s %8.4g elements %8zu output %8zu  %7.2f s  rms %.4f max %.3f  (vs uniform ref: rms "
+                "%.4f max %.3f)  unlocated %zu\n",
+                c.name.c_str(), method.c_str(), parameter, b.elements, b.output_elements, b.seconds, e.rms, e.max,
+                eu.rms, eu.max, unlocated);
             std::fflush(stdout);
         };
         std::printf("%s: %zu samples\n", c.name.c_str(), samples.point.size());

@@ -3,9 +3,9 @@
 /// Cornell box and the shadow room, against a converged fine reference.
 #pragma once
 
+#include "geometry/scene.h"
 #include "hierarchy_error.h"
 #include "hierarchy_scenes.h"
-#include "geometry/scene.h"
 
 #include <cstddef>
 #include <string>

@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
         accuracy(std::string(argv[2]) + "/hierarchy_accuracy.csv");
         return 0;
     }
-    std::fprintf(stderr, "usage: %s scaling|accuracy|oracle OUTPUT_DIR [TRIANGLES ...] | bake_one TRIANGLES [CANCEL_SECONDS] | "
+    std::fprintf(stderr,
+                 "usage: %s scaling|accuracy|oracle OUTPUT_DIR [TRIANGLES ...] | bake_one TRIANGLES [CANCEL_SECONDS] | "
                  "cornell_walls\n",
                  argv[0]);
     return 2;

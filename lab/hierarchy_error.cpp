@@ -121,7 +121,7 @@ Samples sample_polygons(const SceneInput& input, float spacing) {
             };
             for (int i = 0; i < n; ++i)
                 for (int j = 0; i + j < n; ++j) {
-                    add(i + 1.0 / 3, j + 1.0 / 3);                   // upward sub-triangle
+                    add(i + 1.0 / 3, j + 1.0 / 3);                     // upward sub-triangle
                     if (i + j + 1 < n) add(i + 2.0 / 3, j + 2.0 / 3);  // downward sub-triangle
                 }
         }
@@ -145,7 +145,8 @@ std::vector<Rgb> colours_at(const Samples& samples, const Elements& mesh, const 
     for (std::size_t i = 0; i < samples.point.size(); ++i) {
         const auto p = std::size_t(samples.polygon[i]);
         bool located = false;
-        if (p < locators.size() && locators[p]) colours[i] = locators[p]->colour(samples.point[i], element_corner, located);
+        if (p < locators.size() && locators[p])
+            colours[i] = locators[p]->colour(samples.point[i], element_corner, located);
         unlocated += !located;
     }
     return colours;

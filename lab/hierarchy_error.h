@@ -3,8 +3,8 @@
 /// read at a dense grid of points over every input polygon.
 #pragma once
 
-#include "transport/lights.h"
 #include "geometry/scene.h"
+#include "transport/lights.h"
 
 #include <cstddef>
 #include <vector>
@@ -17,8 +17,8 @@ struct Samples {
     std::vector<Vec3> point;
     std::vector<double> weight;
     std::vector<int32_t> polygon;
-    std::vector<Vec3> normal;       ///< the polygon's (Newell's) unit normal
-    std::vector<Rgb> reflectance;   ///< the polygon's
+    std::vector<Vec3> normal;      ///< the polygon's (Newell's) unit normal
+    std::vector<Rgb> reflectance;  ///< the polygon's
 };
 
 /// Each polygon fanned into triangles, each triangle cut into n^2 equal triangles with edges of
@@ -27,7 +27,8 @@ Samples sample_polygons(const SceneInput& input, float spacing);
 
 /// The colour at each sample: the element of `mesh` (from the sample's polygon) that holds it,
 /// its corner colours (4 per element) interpolated barycentrically in triangles and, as Blender
-/// shows quads, in the two triangles 0 1 2 and 0 2 3 of a quad. `unlocated` counts samples found in no element (the nearest one is used).
+/// shows quads, in the two triangles 0 1 2 and 0 2 3 of a quad. `unlocated` counts samples found in no element (the
+/// nearest one is used).
 std::vector<Rgb> colours_at(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& element_corner,
                             std::size_t& unlocated);
 
@@ -41,8 +42,7 @@ std::vector<Rgb> lamp_light_at(const Samples& samples, const Elements& surfaces,
 /// Interpolated element means blur a lamp's sharp shadow over an element; the truth has none.
 /// `unlocated` as for colours_at.
 std::vector<Rgb> reference_colours(const Samples& samples, const Elements& mesh, const std::vector<Rgb>& radiance,
-                                   const int32_t* material, const std::vector<Rgb>& lamp_light,
-                                   std::size_t& unlocated);
+                                   const int32_t* material, const std::vector<Rgb>& lamp_light, std::size_t& unlocated);
 
 struct ColourError {
     double rms = 0.0;  ///< area-weighted RMS of the colour difference / reference's mean radiance

@@ -1,9 +1,9 @@
 #include "hierarchy_oracle.h"
 
+#include "hierarchy/hierarchy.h"
 #include "hierarchy_accuracy.h"
 #include "hierarchy_error.h"
 #include "hierarchy_locate.h"
-#include "hierarchy/hierarchy.h"
 
 #include <glm/geometric.hpp>
 
@@ -98,8 +98,10 @@ std::vector<std::vector<Cell>> candidate_splits(const Cell& c, bool binary, cons
     std::vector<std::vector<Cell>> splits;
     if (c.count == 3) {
         splits.push_back(cut(c,
-                             {{p[0], mid(0, 1), mid(2, 0)}, {mid(0, 1), p[1], mid(1, 2)},
-                              {mid(2, 0), mid(1, 2), p[2]}, {mid(0, 1), mid(1, 2), mid(2, 0)}},
+                             {{p[0], mid(0, 1), mid(2, 0)},
+                              {mid(0, 1), p[1], mid(1, 2)},
+                              {mid(2, 0), mid(1, 2), p[2]},
+                              {mid(0, 1), mid(1, 2), mid(2, 0)}},
                              samples));
         if (!binary) return splits;
         int k = 0;
@@ -111,8 +113,10 @@ std::vector<std::vector<Cell>> candidate_splits(const Cell& c, bool binary, cons
     }
     const Vec3 centre = (p[0] + p[1] + p[2] + p[3]) * 0.25f;
     splits.push_back(cut(c,
-                         {{p[0], mid(0, 1), centre, mid(3, 0)}, {mid(0, 1), p[1], mid(1, 2), centre},
-                          {centre, mid(1, 2), p[2], mid(2, 3)}, {mid(3, 0), centre, mid(2, 3), p[3]}},
+                         {{p[0], mid(0, 1), centre, mid(3, 0)},
+                          {mid(0, 1), p[1], mid(1, 2), centre},
+                          {centre, mid(1, 2), p[2], mid(2, 3)},
+                          {mid(3, 0), centre, mid(2, 3), p[3]}},
                          samples));
     if (!binary) return splits;
     for (std::vector<Cell> halves :
@@ -269,9 +273,10 @@ void oracle(const std::string& csv_path) {
             for (int round = 0;; ++round) {
                 const ColourError e = colour_error(samples, colours_of(cells, samples), truth.at_samples);
                 csv << c.name << "," << split << "," << round << "," << cells.size() + emitters << "," << e.rms << ","
-                    << e.max << "\n" << std::flush;
-                std::printf("%-12s %-11s round %2d: %7zu elements  rms %.4f  max %.3f\n", c.name.c_str(), split,
-                            round, cells.size() + emitters, e.rms, e.max);
+                    << e.max << "\n"
+                    << std::flush;
+                std::printf("%-12s %-11s round %2d: %7zu elements  rms %.4f  max %.3f\n", c.name.c_str(), split, round,
+                            cells.size() + emitters, e.rms, e.max);
                 std::fflush(stdout);
                 if (cells.size() > 40000 || !split_worst(cells, binary, truth, c.sample_spacing)) break;
             }

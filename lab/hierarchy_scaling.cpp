@@ -1,8 +1,8 @@
 #include "hierarchy_scaling.h"
 
 #include "charts.h"
-#include "hierarchy_scenes.h"
 #include "hierarchy/hierarchy.h"
+#include "hierarchy_scenes.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -136,20 +136,21 @@ int bake_one(std::size_t triangles, double cancel_after) {
         const double total = seconds_since(start);
         gaps.mark("end");
         const HierarchyStats& s = r.stats;
-        std::printf("patches=%zu clusters=%zu leaves=%zu nodes=%zu links=%zu rays=%zu bytes=%zu rounds=%d "
-                    "iterations=%d cap=%d converged=%d output=%zu seconds=%.3f seconds_elements=%.3f "
-                    "seconds_links=%.3f seconds_solve=%.3f seconds_interpolate=%.3f progress_calls=%zu "
-                    "longest_gap=%.3f longest_gap_phase=%s\n",
-                    s.patches, s.clusters, s.leaves, s.nodes, s.links, s.rays, s.bytes, s.rounds, s.iterations,
-                    int(s.leaf_cap_reached), int(r.converged), r.output.size(), total, r.seconds_elements,
-                    r.seconds_links, r.seconds_solve, r.seconds_interpolate, gaps.calls, gaps.longest,
-                    gaps.phase.c_str());
+        std::printf(
+            "patches=%zu clusters=%zu leaves=%zu nodes=%zu links=%zu rays=%zu bytes=%zu rounds=%d "
+            "iterations=%d cap=%d converged=%d output=%zu seconds=%.3f seconds_elements=%.3f "
+            "seconds_links=%.3f seconds_solve=%.3f seconds_interpolate=%.3f progress_calls=%zu "
+            "longest_gap=%.3f longest_gap_phase=%s\n",
+            s.patches, s.clusters, s.leaves, s.nodes, s.links, s.rays, s.bytes, s.rounds, s.iterations,
+            int(s.leaf_cap_reached), int(r.converged), r.output.size(), total, r.seconds_elements, r.seconds_links,
+            r.seconds_solve, r.seconds_interpolate, gaps.calls, gaps.longest, gaps.phase.c_str());
     } catch (const Cancelled&) {
         const double thrown = seconds_since(start);
-        std::printf("cancel_requested=%.3f cancelled_after=%.3f cancel_latency=%.3f phase=%s progress_calls=%zu "
-                    "longest_gap=%.3f longest_gap_phase=%s\n",
-                    cancelled_at, thrown, thrown - cancelled_at, gaps.last_phase.c_str(), gaps.calls, gaps.longest,
-                    gaps.phase.c_str());
+        std::printf(
+            "cancel_requested=%.3f cancelled_after=%.3f cancel_latency=%.3f phase=%s progress_calls=%zu "
+            "longest_gap=%.3f longest_gap_phase=%s\n",
+            cancelled_at, thrown, thrown - cancelled_at, gaps.last_phase.c_str(), gaps.calls, gaps.longest,
+            gaps.phase.c_str());
     }
     return 0;
 }
@@ -157,10 +158,29 @@ int bake_one(std::size_t triangles, double cancel_after) {
 void scaling(const std::string& csv_path, const std::vector<std::size_t>& counts, std::size_t cancel_triangles,
              double cancel_after) {
     std::ofstream csv(csv_path);
-    const std::vector<std::string> columns = {
-        "triangles", "triangle_edge", "min_element_size", "patches", "clusters", "leaves", "nodes", "links", "rays",
-        "bytes", "rounds", "iterations", "cap", "converged", "output", "seconds", "seconds_elements", "seconds_links",
-        "seconds_solve", "seconds_interpolate", "progress_calls", "longest_gap", "longest_gap_phase"};
+    const std::vector<std::string> columns = {"triangles",
+                                              "triangle_edge",
+                                              "min_element_size",
+                                              "patches",
+                                              "clusters",
+                                              "leaves",
+                                              "nodes",
+                                              "links",
+                                              "rays",
+                                              "bytes",
+                                              "rounds",
+                                              "iterations",
+                                              "cap",
+                                              "converged",
+                                              "output",
+                                              "seconds",
+                                              "seconds_elements",
+                                              "seconds_links",
+                                              "seconds_solve",
+                                              "seconds_interpolate",
+                                              "progress_calls",
+                                              "longest_gap",
+                                              "longest_gap_phase"};
     for (const std::string& c : columns) csv << c << ",";
     csv << "peak_mb\n";
     for (const std::size_t n : counts) {
@@ -173,8 +193,9 @@ void scaling(const std::string& csv_path, const std::vector<std::size_t>& counts
         csv << peak_mb << "\n" << std::flush;
     }
     double peak_mb = 0.0;
-    const std::string line = run_child({"radiosity_hierarchy_charts", "bake_one", std::to_string(cancel_triangles),
-                                        std::to_string(cancel_after)}, peak_mb);
+    const std::string line = run_child(
+        {"radiosity_hierarchy_charts", "bake_one", std::to_string(cancel_triangles), std::to_string(cancel_after)},
+        peak_mb);
     std::ofstream(csv_path.substr(0, csv_path.rfind('.')) + "_cancel.txt") << line << " peak_mb=" << peak_mb << "\n";
     std::printf("cancel: %s peak_mb=%.0f\n", line.c_str(), peak_mb);
 }

@@ -38,8 +38,8 @@ using Surface = std::function<void(double u, double v, Vec3& point, Vec3& outwar
 
 /// Triangulates `surface` on an nu x nv grid (shared vertices), each triangle facing outward;
 /// degenerate triangles (at a sphere's poles) are left out. Returns the sum of edge lengths.
-double add_surface(test::SceneArrays& s, const Surface& surface, int nu, int nv, const Rgb& rho,
-                   int32_t material, std::size_t& edges) {
+double add_surface(test::SceneArrays& s, const Surface& surface, int nu, int nv, const Rgb& rho, int32_t material,
+                   std::size_t& edges) {
     const auto first = static_cast<int32_t>(s.positions.size() / 3);
     std::vector<Vec3> points, outward;
     for (int j = 0; j <= nv; ++j)
@@ -116,39 +116,49 @@ LitScene object_room(std::size_t triangles) {
         for (int gy = 0; gy < grid; ++gy) {
             const int k = gx * grid + gy;
             // 1 mm above the floor: resting objects would touch it along faces or circles.
-            const Vec3 centre(1.0f + (room - 2.0f) * (gx + 0.5f) / grid, 1.0f + (room - 2.0f) * (gy + 0.5f) / grid, 0.001f);
+            const Vec3 centre(1.0f + (room - 2.0f) * (gx + 0.5f) / grid, 1.0f + (room - 2.0f) * (gy + 0.5f) / grid,
+                              0.001f);
             const Rgb rho = colours[k % 3];
             const int32_t material = 3 + k % 3;
             if (k % 3 == 0) {  // UV sphere, radius 0.45, on the floor
                 const float r = 0.45f;
                 const Vec3 o = centre + Vec3(0, 0, r);
-                length += add_surface(s, [&](double u, double v, Vec3& p, Vec3& out) {
-                    const double phi = 2 * M_PI * u, theta = M_PI * v;
-                    out = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-                    p = o + r * out;
-                }, 2 * n, n, rho, material, edges);
+                length += add_surface(
+                    s,
+                    [&](double u, double v, Vec3& p, Vec3& out) {
+                        const double phi = 2 * M_PI * u, theta = M_PI * v;
+                        out = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+                        p = o + r * out;
+                    },
+                    2 * n, n, rho, material, edges);
             } else if (k % 3 == 1) {  // box 0.7 m, each face box_n x box_n quads
                 const float h = 0.35f;
                 const Vec3 o = centre + Vec3(0, 0, h);
                 for (int axis = 0; axis < 3; ++axis)
                     for (float sign : {-1.0f, 1.0f}) {
-                        length += add_surface(s, [&](double u, double v, Vec3& p, Vec3& out) {
-                            out = Vec3(0.0f);
-                            out[axis] = sign;
-                            p = o + h * out;
-                            p[(axis + 1) % 3] += float((2 * u - 1) * h);
-                            p[(axis + 2) % 3] += float((2 * v - 1) * h);
-                        }, box_n, box_n, rho, material, edges);
+                        length += add_surface(
+                            s,
+                            [&](double u, double v, Vec3& p, Vec3& out) {
+                                out = Vec3(0.0f);
+                                out[axis] = sign;
+                                p = o + h * out;
+                                p[(axis + 1) % 3] += float((2 * u - 1) * h);
+                                p[(axis + 2) % 3] += float((2 * v - 1) * h);
+                            },
+                            box_n, box_n, rho, material, edges);
                     }
             } else {  // torus lying flat: ring radius 0.32, tube radius 0.13
                 const float R = 0.32f, r = 0.13f;
                 const Vec3 o = centre + Vec3(0, 0, r);
-                length += add_surface(s, [&](double u, double v, Vec3& p, Vec3& out) {
-                    const double phi = 2 * M_PI * u, psi = 2 * M_PI * v;
-                    const Vec3 ring(std::cos(phi), std::sin(phi), 0.0);
-                    out = float(std::cos(psi)) * ring + Vec3(0, 0, std::sin(psi));
-                    p = o + R * ring + r * out;
-                }, 2 * n, n, rho, material, edges);
+                length += add_surface(
+                    s,
+                    [&](double u, double v, Vec3& p, Vec3& out) {
+                        const double phi = 2 * M_PI * u, psi = 2 * M_PI * v;
+                        const Vec3 ring(std::cos(phi), std::sin(phi), 0.0);
+                        out = float(std::cos(psi)) * ring + Vec3(0, 0, std::sin(psi));
+                        p = o + R * ring + r * out;
+                    },
+                    2 * n, n, rho, material, edges);
             }
         }
     scene.triangle_edge = float(length / double(edges));

@@ -3,8 +3,8 @@
 /// and a room of tessellated objects of any triangle count.
 #pragma once
 
-#include "transport/lights.h"
 #include "testing/test_util.h"
+#include "transport/lights.h"
 
 #include <cstddef>
 

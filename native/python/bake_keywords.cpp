@@ -202,7 +202,8 @@ BakeSettings bake_settings(const py::kwargs& given) {
 }
 
 ProgressReporter::ProgressReporter(const py::object& progress)
-    : monitor_(monitor_of(progress)), bridge_(monitor_ ? py::none() : progress),
+    : monitor_(monitor_of(progress)),
+      bridge_(monitor_ ? py::none() : progress),
       function_(monitor_ ? monitor_->function() : bridge_.function()) {}
 
 py::dict bake_result(const BakeResult& result) {

@@ -21,7 +21,8 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
                      const py::object& progress, const py::kwargs& keywords) {
-    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     const std::optional<TextureArrays> texture_arrays =
         parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
     if (texture_arrays) input.textures = &texture_arrays->view;
@@ -43,7 +44,8 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
                      const py::kwargs& keywords) {
-    SceneInput input = scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
+    SceneInput input =
+        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
     const std::optional<TextureArrays> texture_arrays =
         parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
     if (texture_arrays) input.textures = &texture_arrays->view;

@@ -34,7 +34,8 @@ Vec3 unit_entry(const py::dict& lamp, const char* key, std::size_t index) {
 
 Rgb colour_entry(const py::dict& lamp, const char* key, std::size_t index) {
     const Rgb c = vector_entry(lamp, key, index);
-    if (c.r < 0 || c.g < 0 || c.b < 0) throw InputError("light " + std::to_string(index) + ": '" + key + "' is negative");
+    if (c.r < 0 || c.g < 0 || c.b < 0)
+        throw InputError("light " + std::to_string(index) + ": '" + key + "' is negative");
     return c;
 }
 

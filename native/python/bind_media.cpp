@@ -15,8 +15,8 @@ namespace radiosity::python {
 namespace {
 
 /// One (nz, ny, nx, 3) grid of a medium into `out`, x fastest; ValueError naming medium and key.
-void read_rgb_grid(const py::dict& medium, const char* key, const std::string& name,
-                   std::array<int32_t, 3>& dims, std::vector<Rgb>& out) {
+void read_rgb_grid(const py::dict& medium, const char* key, const std::string& name, std::array<int32_t, 3>& dims,
+                   std::vector<Rgb>& out) {
     if (!medium.contains(key)) throw InputError(name + " has no '" + key + "'");
     const auto values = medium[key].cast<Array<float>>();
     const bool first = dims[0] < 0;
@@ -26,7 +26,7 @@ void read_rgb_grid(const py::dict& medium, const char* key, const std::string& n
         std::string got;
         for (py::ssize_t d = 0; d < values.ndim(); ++d) got += (d ? ", " : "") + std::to_string(values.shape(d));
         throw InputError(name + ": '" + key + "' must have shape (nz, ny, nx, 3)" +
-                              (first ? "" : " like the medium's other grids") + ", got (" + got + ")");
+                         (first ? "" : " like the medium's other grids") + ", got (" + got + ")");
     }
     dims = {int32_t(values.shape(2)), int32_t(values.shape(1)), int32_t(values.shape(0))};
     const float* v = values.data();
@@ -65,7 +65,8 @@ py::dict principled_volume_arrays(const std::vector<double>& color, const Array<
     const Rgb c = rgb_of(color, "color"), a = rgb_of(absorption_color, "absorption_color"),
               e = rgb_of(emission_color, "emission_color");
     bool same_shape = density.ndim() == emission_strength.ndim();
-    for (py::ssize_t d = 0; same_shape && d < density.ndim(); ++d) same_shape = density.shape(d) == emission_strength.shape(d);
+    for (py::ssize_t d = 0; same_shape && d < density.ndim(); ++d)
+        same_shape = density.shape(d) == emission_strength.shape(d);
     if (!same_shape) throw InputError("density and emission_strength must have the same shape");
     std::vector<py::ssize_t> shape(density.shape(), density.shape() + density.ndim());
     shape.push_back(3);

@@ -17,7 +17,8 @@ WorldLight parse_world(const py::object& map, int samples, int point_samples) {
     world.width = static_cast<int>(pixels.shape(1));
     const float* p = pixels.data();
     world.radiance.resize(std::size_t(world.width) * std::size_t(world.height));
-    for (std::size_t i = 0; i < world.radiance.size(); ++i) world.radiance[i] = Rgb(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    for (std::size_t i = 0; i < world.radiance.size(); ++i)
+        world.radiance[i] = Rgb(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
     world.check();
     return world;
 }

@@ -6,10 +6,14 @@ namespace {
 
 const char* defect_name(Defect defect) {
     switch (defect) {
-        case Defect::ZeroArea: return "zero area";
-        case Defect::NonFinite: return "non-finite coordinates";
-        case Defect::TooFewCorners: return "fewer than three corners";
-        case Defect::BadIndex: return "vertex index out of range";
+        case Defect::ZeroArea:
+            return "zero area";
+        case Defect::NonFinite:
+            return "non-finite coordinates";
+        case Defect::TooFewCorners:
+            return "fewer than three corners";
+        case Defect::BadIndex:
+            return "vertex index out of range";
     }
     return "unknown defect";
 }

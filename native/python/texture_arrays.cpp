@@ -28,7 +28,8 @@ void parse_role(const py::dict& in, const char* index_key, const char* scale_key
     if (!in.contains(index_key)) return;
     index = in[index_key].cast<Array<int32_t>>();
     require_shape(*index, index_key, faces, 0);
-    if (!in.contains(scale_key)) throw InputError(std::string("textures: '") + index_key + "' needs '" + scale_key + "'");
+    if (!in.contains(scale_key))
+        throw InputError(std::string("textures: '") + index_key + "' needs '" + scale_key + "'");
     scale = in[scale_key].cast<Array<float>>();
     require_shape(*scale, scale_key, faces, 3);
 }
@@ -53,7 +54,8 @@ std::optional<TextureArrays> parse_textures(const py::object& textures, py::ssiz
             t.height = static_cast<int>(rgb.shape(0));
             t.width = static_cast<int>(rgb.shape(1));
             t.filter = parse_filter(entry.contains("filter") ? entry["filter"].cast<std::string>() : "linear");
-            t.extension = parse_extension(entry.contains("extension") ? entry["extension"].cast<std::string>() : "repeat");
+            t.extension =
+                parse_extension(entry.contains("extension") ? entry["extension"].cast<std::string>() : "repeat");
             t.srgb = entry.contains("srgb") && entry["srgb"].cast<bool>();
             out.images.push_back(std::move(rgb));
             out.view.textures.push_back(t);

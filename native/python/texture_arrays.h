@@ -23,8 +23,8 @@ struct TextureArrays {
 
 /// Parses `textures` (None, or a dict: images, a list of dicts with rgb (height, width, 3) float32,
 /// bottom row first, linear or with srgb True sRGB-encoded, filter "closest" or "linear",
-/// extension "repeat", "extend", "clip" or "mirror"; corner_uv (corners, 2); reflectance_texture and emission_texture (faces,) int32, -1 for
-/// none, each with its scale (faces, 3)). ValueError naming the key that does not fit.
+/// extension "repeat", "extend", "clip" or "mirror"; corner_uv (corners, 2); reflectance_texture and emission_texture
+/// (faces,) int32, -1 for none, each with its scale (faces, 3)). ValueError naming the key that does not fit.
 std::optional<TextureArrays> parse_textures(const py::object& textures, py::ssize_t faces, py::ssize_t corners);
 
 }  // namespace radiosity::python

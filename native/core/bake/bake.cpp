@@ -15,9 +15,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// Each element's light arriving, irradiance / pi, from B = E + rho H: H = (B - E) / rho per
 /// channel, 0 where rho is 0 (BakeResult::light_colors).
@@ -74,14 +72,14 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
     // solve is done.
     std::vector<int32_t> small;
     for (std::size_t e = 0; e < elements.size(); ++e)
-        if ((elements.area[e] < settings.direct_emitter_area || !elements.blocks(e)) &&
-            max_channel(emitted[e]) > 0.0)
+        if ((elements.area[e] < settings.direct_emitter_area || !elements.blocks(e)) && max_channel(emitted[e]) > 0.0)
             small.push_back(int32_t(e));
     std::vector<Rgb> small_light;
     if (!small.empty()) {
         start = Clock::now();
         small_light = detail::small_emitter_light(elements, small, emitted, progress);
-        for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * small_light[e];
+        for (std::size_t e = 0; e < elements.size(); ++e)
+            elements.emission[e] += elements.reflectance[e] * small_light[e];
         for (const int32_t j : small) elements.emission[j] -= emitted[j];
         result.direct_emitters = small.size();
         result.seconds_direct_emitters = seconds_since(start);
@@ -111,22 +109,21 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
         result.solve.radiance[j] += emitted[j];
         elements.emission[j] += emitted[j];
     }
-    for (std::size_t e = 0; e < small_light.size(); ++e) elements.emission[e] -= elements.reflectance[e] * small_light[e];
+    for (std::size_t e = 0; e < small_light.size(); ++e)
+        elements.emission[e] -= elements.reflectance[e] * small_light[e];
 
     start = Clock::now();
     result.colors = interpolate_corners(elements, result.solve.radiance, input.material, settings.hard_edge_angle);
-    result.light_colors =
-        interpolate_corners(elements, light_arriving(elements, result.solve.radiance, emitted), input.material,
-                            settings.hard_edge_angle);
+    result.light_colors = interpolate_corners(elements, light_arriving(elements, result.solve.radiance, emitted),
+                                              input.material, settings.hard_edge_angle);
     result.seconds_interpolate = seconds_since(start);
 
     if (settings.final_gather.enabled) {
         start = Clock::now();
         const detail::GatherCounts counts =
             detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.world,
-                                 settings.final_gather,
-                                 input.material, input.face_offsets, input.face_count, settings.hard_edge_angle,
-                                 result.colors, result.light_colors, progress);
+                                 settings.final_gather, input.material, input.face_offsets, input.face_count,
+                                 settings.hard_edge_angle, result.colors, result.light_colors, progress);
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);

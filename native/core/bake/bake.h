@@ -43,7 +43,7 @@ namespace radiosity {
 struct HierarchicalSettings {
     bool enabled = false;
     double refine_tolerance = HierarchySettings().refine_tolerance;  ///< error per link, share of the mean radiance
-    std::size_t max_bytes = 0;  ///< cap on the nodes' and links' bytes (0: none)
+    std::size_t max_bytes = 0;                                       ///< cap on the nodes' and links' bytes (0: none)
 };
 
 /// Uniform regions of a medium merge into octree blocks of up to 2^this voxels per edge
@@ -52,9 +52,9 @@ constexpr int kDefaultMaxBlockLevel = 1;
 
 /// Participating media solved with the surfaces by the zonal method (media_bake.h).
 struct MediaSettings {
-    std::vector<Medium> media;     ///< none: a surface bake
-    int zone_resolution = 32;      ///< the zones' full cubes: cells per face edge (even, >= 8)
-    int grid_subdivision = 3;      ///< output grid cells per voxel edge
+    std::vector<Medium> media;  ///< none: a surface bake
+    int zone_resolution = 32;   ///< the zones' full cubes: cells per face edge (even, >= 8)
+    int grid_subdivision = 3;   ///< output grid cells per voxel edge
     int max_block_level = kDefaultMaxBlockLevel;
 };
 
@@ -62,9 +62,9 @@ struct BakeSettings {
     /// The longest edge of the finest elements, metres (see the top of this file); 0 = one element
     /// per polygon (uniform and media bakes only).
     float element_size = 0.0f;
-    int resolution = 128;            ///< hemi-cube cells per full face edge
+    int resolution = 128;  ///< hemi-cube cells per full face edge
     SolveSettings solve;
-    float hard_edge_angle = 0.5235988f; ///< radians (30 degrees)
+    float hard_edge_angle = 0.5235988f;  ///< radians (30 degrees)
     /// Element cap, sliver split, intersection and contact cuts (docs/stability.md).
     ElementLimits limits = ElementLimits().with_contacts();
     /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
@@ -117,16 +117,17 @@ struct BakeResult {
     /// reflectance is 0 (such a surface reflects nothing there, whatever light arrives); with the
     /// gather, the gathered output corners hold the light the gather found, whatever the colour.
     CornerColors light_colors;
-    bool matrix_stored = false;        ///< F stored (exact system) or rows rendered on demand
-    std::size_t matrix_nonzeros = 0;   ///< 0 when rows were rendered on demand
-    std::size_t matrix_bytes = 0;      ///< matrices held at once (progressive: F and F^T)
-    double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0, seconds_interpolate = 0;
-    double seconds_world = 0;           ///< the world's light on the elements (0 without a world)
-    double seconds_gather = 0;          ///< the final gather (0 when off)
-    std::size_t gathered_points = 0;    ///< output vertices whose colour the final gather computed
-    std::size_t buried_points = 0;      ///< output vertices inside other geometry: interpolated colour kept
-    std::size_t direct_emitters = 0;    ///< emitting elements lit directly (direct_emitter_area)
-    double seconds_direct_emitters = 0; ///< their direct light on every element
+    bool matrix_stored = false;       ///< F stored (exact system) or rows rendered on demand
+    std::size_t matrix_nonzeros = 0;  ///< 0 when rows were rendered on demand
+    std::size_t matrix_bytes = 0;     ///< matrices held at once (progressive: F and F^T)
+    double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0,
+           seconds_interpolate = 0;
+    double seconds_world = 0;            ///< the world's light on the elements (0 without a world)
+    double seconds_gather = 0;           ///< the final gather (0 when off)
+    std::size_t gathered_points = 0;     ///< output vertices whose colour the final gather computed
+    std::size_t buried_points = 0;       ///< output vertices inside other geometry: interpolated colour kept
+    std::size_t direct_emitters = 0;     ///< emitting elements lit directly (direct_emitter_area)
+    double seconds_direct_emitters = 0;  ///< their direct light on every element
     /// Hierarchical bakes: the tree's counts. `build` is then the output mesh (the leaves), `solve`
     /// its radiance, and the form factors' seconds are the links'.
     std::optional<HierarchyStats> hierarchy;

@@ -26,7 +26,8 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     result.zones = build_zones(media, max_block_level);
     result.seconds_zones = seconds_since(start);
     if (!settings.lights.empty() && result.zones.size() > 0)
-        throw InputError("point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
+        throw InputError(
+            "point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
 
     start = Clock::now();
     bake.build = detail::media_elements(input, settings);
@@ -62,8 +63,8 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     bake.seconds_interpolate = seconds_since(start);
 
     for (std::size_t i = 0; i < media.size(); ++i)
-        result.grids.push_back(medium_grids(media[i], voxel_radiance(media[i], i, result.zones, result.zone_radiance),
-                                            grid_subdivision));
+        result.grids.push_back(
+            medium_grids(media[i], voxel_radiance(media[i], i, result.zones, result.zone_radiance), grid_subdivision));
     return result;
 }
 

@@ -1,15 +1,15 @@
 /// @file media_bake.h
-/// @brief The bake with participating media (internal: bake() calls it when there are media): elements, zones, exchange factors, the coupled solve,
-/// corner colours and the grids a renderer needs to show the media.
+/// @brief The bake with participating media (internal: bake() calls it when there are media): elements, zones, exchange
+/// factors, the coupled solve, corner colours and the grids a renderer needs to show the media.
 ///
 /// Output grids per medium (zonal_grids.h): `density` = K_t and `emission` = K_t J on a lattice
 /// `grid_subdivision` times finer than the voxels, J interpolated between the zones' radiances L_k
 /// (at subdivision 1 without merging: K_t L_k per zone, zero outside zones). A purely absorbing
-/// volume with these, as Cycles renders one (emission * tau ds along the ray), gives the zonal method's ray integral along an eye ray (Rushmeier & Torrance 1987):
-/// inside zone k, int J K_t tau ds = J (tau_in - tau_out) where J is constant. Where K_t differs
-/// per channel the density is RGB; Cycles' Principled Volume reaches it with colour 0, density 1
-/// and absorption colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per
-/// channel otherwise.
+/// volume with these, as Cycles renders one (emission * tau ds along the ray), gives the zonal method's ray integral
+/// along an eye ray (Rushmeier & Torrance 1987): inside zone k, int J K_t tau ds = J (tau_in - tau_out) where J is
+/// constant. Where K_t differs per channel the density is RGB; Cycles' Principled Volume reaches it with colour 0,
+/// density 1 and absorption colour (1 - K_t)^2 per channel while K_t <= 1, or a Volume Absorption per channel
+/// otherwise.
 #pragma once
 
 #include "bake/bake.h"

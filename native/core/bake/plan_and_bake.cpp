@@ -17,8 +17,9 @@ void check(const BakeSettings& settings) {
     if (settings.hierarchical.enabled && !(settings.hierarchical.refine_tolerance > 0.0))
         throw InputError("refine_tolerance must be positive");
     if (settings.hierarchical.enabled && !(settings.element_size > 0.0f))
-        throw InputError("element_size (the hierarchy's min_element_size: its finest elements) must be a positive "
-                         "number of metres");
+        throw InputError(
+            "element_size (the hierarchy's min_element_size: its finest elements) must be a positive "
+            "number of metres");
 }
 
 /// The hierarchy's result in bake()'s shape: the leaves are the elements.
@@ -84,8 +85,8 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
         return plan;
     }
-    plan.build = with_media(settings) ? detail::media_elements(input, settings)
-                                      : detail::uniform_elements(input, settings);
+    plan.build =
+        with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
     plan.matrix_bytes_bound = matrix_bytes_bound(plan.build.elements.size(), settings.resolution);
     // The media bake always stores its matrix (or refuses to bake beyond the budget).
     plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.build.elements.size(), settings);
@@ -98,8 +99,8 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         return as_bake_result(bake_hierarchical(input, detail::hierarchy_settings(settings), progress));
     if (with_media(settings)) {
         const MediaSettings& m = settings.media;
-        return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress,
-                                              m.grid_subdivision, m.max_block_level));
+        return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress, m.grid_subdivision,
+                                              m.max_block_level));
     }
     return detail::bake_uniform(input, settings, progress);
 }

@@ -36,17 +36,20 @@ bool parallel_rows(const char* phase, std::size_t count, std::size_t grain, std:
         if (!progress(p)) cancelled = true;
     };
     tbb::task_group_context context;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain), [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            if (cancelled || stopped) {
-                context.cancel_group_execution();
-                return;
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, count, grain),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (cancelled || stopped) {
+                    context.cancel_group_execution();
+                    return;
+                }
+                if (!row(i)) stopped = true;
+                const std::size_t finished = ++done;
+                if (finished % step == 0 && finished != count) tell(finished);
             }
-            if (!row(i)) stopped = true;
-            const std::size_t finished = ++done;
-            if (finished % step == 0 && finished != count) tell(finished);
-        }
-    }, context);
+        },
+        context);
     if (!cancelled && !stopped) tell(count);
     if (cancelled) throw Cancelled();
     return !stopped;

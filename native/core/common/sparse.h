@@ -11,7 +11,10 @@ namespace radiosity {
 struct SparseRow {
     std::vector<int32_t> col;
     std::vector<float> val;
-    void clear() { col.clear(); val.clear(); }
+    void clear() {
+        col.clear();
+        val.clear();
+    }
 };
 
 /// Rows [row_start[i], row_start[i+1]) of col/val hold row i.

@@ -4,18 +4,18 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
-#include <algorithm>
 #include <utility>
 
 namespace radiosity {
 
-using Vec3 = glm::vec3;   ///< positions and directions, metres (float: what Blender stores)
-using Rgb = glm::dvec3;   ///< radiance or reflectance per RGB channel (double: solver precision)
+using Vec3 = glm::vec3;  ///< positions and directions, metres (float: what Blender stores)
+using Rgb = glm::dvec3;  ///< radiance or reflectance per RGB channel (double: solver precision)
 
 /// The largest of the three channels.
 inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
@@ -23,10 +23,10 @@ inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 /// What a long-running phase reports. `radiance` is the current per-element solution when the
 /// phase has one (solvers), null otherwise; it is only valid during the callback.
 struct Progress {
-    const char* phase = "";     ///< "form_factors", "solve", ...
-    std::size_t done = 0;       ///< units finished (hemi-cubes, iterations, shots)
-    std::size_t total = 0;      ///< units expected (an upper bound for iterative solvers)
-    double residual = 0.0;      ///< current relative residual, 0 where not applicable
+    const char* phase = "";  ///< "form_factors", "solve", ...
+    std::size_t done = 0;    ///< units finished (hemi-cubes, iterations, shots)
+    std::size_t total = 0;   ///< units expected (an upper bound for iterative solvers)
+    double residual = 0.0;   ///< current relative residual, 0 where not applicable
     const Rgb* radiance = nullptr;
     std::size_t element_count = 0;
 };
@@ -69,9 +69,11 @@ struct FileError : std::runtime_error {
 /// (-1 when no polygon is to blame), so that the caller can name the object.
 struct NumericalError : std::runtime_error {
     NumericalError(std::string phase_name, int32_t input_polygon)
-        : std::runtime_error("non-finite light in phase '" + phase_name + "'" +
-                             (input_polygon >= 0 ? " at input polygon " + std::to_string(input_polygon) : std::string())),
-          phase(std::move(phase_name)), polygon(input_polygon) {}
+        : std::runtime_error(
+              "non-finite light in phase '" + phase_name + "'" +
+              (input_polygon >= 0 ? " at input polygon " + std::to_string(input_polygon) : std::string())),
+          phase(std::move(phase_name)),
+          polygon(input_polygon) {}
     std::string phase;
     int32_t polygon = -1;
 };

@@ -6,9 +6,9 @@
 /// whatever the mix of large and small boxes (a uniform grid does not).
 #pragma once
 
+#include <tbb/parallel_invoke.h>
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
-#include <tbb/parallel_invoke.h>
 
 #include <cstdint>
 #include <vector>

@@ -45,7 +45,8 @@ std::vector<Piece> cut_polygon(const std::vector<DVec3>& p, const DVec3& normal,
         for (std::size_t k = 0; k < p.size(); ++k) whole.corner.push_back(static_cast<int32_t>(k));
         pieces.push_back(std::move(whole));
     } else {
-        for (const auto& t : triangulate(p, normal)) pieces.push_back({{p[t[0]], p[t[1]], p[t[2]]}, {t[0], t[1], t[2]}});
+        for (const auto& t : triangulate(p, normal))
+            pieces.push_back({{p[t[0]], p[t[1]], p[t[2]]}, {t[0], t[1], t[2]}});
     }
     std::vector<Piece> next;
     for (const CutSegment* s = begin; s != end; ++s) {
@@ -54,7 +55,8 @@ std::vector<Piece> cut_polygon(const std::vector<DVec3>& p, const DVec3& normal,
         for (const Piece& piece : pieces) {
             DVec3 a = s->a, b = s->b;
             Piece left, right;
-            if (clip_segment(piece.points, normal, tolerance, a, b) && split(piece, s->a, side, tolerance, left, right)) {
+            if (clip_segment(piece.points, normal, tolerance, a, b) &&
+                split(piece, s->a, side, tolerance, left, right)) {
                 next.push_back(std::move(left));
                 next.push_back(std::move(right));
             } else {
@@ -71,7 +73,8 @@ void mark_cut_edges(Elements& elements, std::size_t first, const CutSegment* beg
     for (std::size_t e = first; e < elements.size(); ++e) {
         const int m = elements.is_triangle(e) ? 3 : 4;
         for (int k = 0; k < m; ++k) {
-            const DVec3 v0(elements.vertices[elements.corners[e][k]]), v1(elements.vertices[elements.corners[e][(k + 1) % m]]);
+            const DVec3 v0(elements.vertices[elements.corners[e][k]]),
+                v1(elements.vertices[elements.corners[e][(k + 1) % m]]);
             for (const CutSegment* s = begin; s != end; ++s) {
                 const double length = glm::length(s->b - s->a);
                 const DVec3 u = (s->b - s->a) / length;

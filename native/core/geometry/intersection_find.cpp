@@ -5,10 +5,10 @@
 #include "geometry/box_tree.h"
 #include "geometry/polygon_geometry.h"
 
-#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -88,7 +88,8 @@ bool on_outline(const std::vector<DVec3>& p, const DVec3& x, double tolerance) {
 }
 
 /// The interval where a convex part crosses the plane, as two points on it; false if shorter than `tolerance`.
-bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& along, double tolerance, DVec3& a, DVec3& b) {
+bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& along, double tolerance, DVec3& a,
+              DVec3& b) {
     double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
     auto take = [&](const DVec3& q) {
         const double t = glm::dot(q, along);
@@ -98,8 +99,10 @@ bool crossing(const std::vector<DVec3>& part, const Plane& plane, const DVec3& a
     for (std::size_t k = 0; k < part.size(); ++k) {
         const DVec3 &p = part[k], &q = part[(k + 1) % part.size()];
         const double dp = glm::dot(plane.normal, p) - plane.offset, dq = glm::dot(plane.normal, q) - plane.offset;
-        if (std::abs(dp) <= tolerance) take(p - dp * plane.normal);
-        else if ((dp > 0.0) != (dq > 0.0) && std::abs(dq) > tolerance) take(p + (q - p) * (dp / (dp - dq)));
+        if (std::abs(dp) <= tolerance)
+            take(p - dp * plane.normal);
+        else if ((dp > 0.0) != (dq > 0.0) && std::abs(dq) > tolerance)
+            take(p + (q - p) * (dp / (dp - dq)));
     }
     return t_max - t_min > tolerance;
 }
@@ -170,7 +173,8 @@ public:
             const DVec3 from = onto_f(a_corners_[k]), to = onto_f(a_corners_[(k + 1) % a_corners_.size()]);
             for (const auto& f_part : b_parts_) {
                 DVec3 ca = from, cb = to;
-                if (clip_segment(f_part, pf.normal, tolerance, ca, cb) && !on_outline(b_corners_, 0.5 * (ca + cb), tolerance))
+                if (clip_segment(f_part, pf.normal, tolerance, ca, cb) &&
+                    !on_outline(b_corners_, 0.5 * (ca + cb), tolerance))
                     out.push_back({static_cast<int32_t>(f), static_cast<int32_t>(e), ca, cb});
             }
         }
@@ -245,8 +249,9 @@ std::vector<CutSegment> find_intersections(const SceneInput& in, const std::vect
     Box scene{glm::vec3(std::numeric_limits<float>::infinity()), glm::vec3(-std::numeric_limits<float>::infinity())};
     for (const Box& box : boxes) scene.lo = glm::min(scene.lo, box.lo), scene.hi = glm::max(scene.hi, box.hi);
     // As weld_tolerance: 1e-5 of the scene's diagonal.
-    const double contact_tolerance =
-        !contacts ? -1.0 : boxes.empty() ? 0.0 : 1e-5 * glm::length(glm::dvec3(scene.hi) - glm::dvec3(scene.lo));
+    const double contact_tolerance = !contacts       ? -1.0
+                                     : boxes.empty() ? 0.0
+                                                     : 1e-5 * glm::length(glm::dvec3(scene.hi) - glm::dvec3(scene.lo));
     std::vector<Plane> planes(in.face_count);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.face_count), [&](const auto& range) {
         std::vector<DVec3> p;

@@ -106,9 +106,12 @@ SliverSplit split_sliver(const DVec3& p0, const DVec3& p1, const DVec3& p2, floa
     const double height = glm::length(r - foot);
     if (!(length > max_aspect * height)) return split;
     split.sliver = true;
-    if (along <= height) split.apex = (k + 1) % 3;            // short edge r-a: apex b
-    else if (length - along <= height) split.apex = k;        // short edge b-r: apex a
-    else split.at_foot = true, split.longest = k, split.foot = foot;
+    if (along <= height)
+        split.apex = (k + 1) % 3;  // short edge r-a: apex b
+    else if (length - along <= height)
+        split.apex = k;  // short edge b-r: apex a
+    else
+        split.at_foot = true, split.longest = k, split.foot = foot;
     return split;
 }
 

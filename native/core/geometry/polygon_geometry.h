@@ -28,11 +28,11 @@ std::vector<std::vector<int>> convex_pieces(const std::vector<DVec3>& p, const D
 /// How a sliver triangle is cut into strips (scene.cpp). A strip runs from an apex to its short
 /// opposite edge, cut across by lines parallel to that edge.
 struct SliverSplit {
-    bool sliver = false;  ///< longest edge > max_aspect x the height over it
-    int apex = 0;         ///< needle: the corner opposite the short edge
-    bool at_foot = false; ///< cap (an angle near 180 degrees): two strips meeting at `foot`
-    int longest = 0;      ///< cap: the longest edge runs from corner `longest` to the next
-    DVec3 foot{0.0};      ///< cap: the foot of the altitude onto the longest edge
+    bool sliver = false;   ///< longest edge > max_aspect x the height over it
+    int apex = 0;          ///< needle: the corner opposite the short edge
+    bool at_foot = false;  ///< cap (an angle near 180 degrees): two strips meeting at `foot`
+    int longest = 0;       ///< cap: the longest edge runs from corner `longest` to the next
+    DVec3 foot{0.0};       ///< cap: the foot of the altitude onto the longest edge
 };
 
 /// A needle (one short edge, leaning at most 45 degrees from the altitude) is one strip from the

@@ -37,7 +37,8 @@ bool emits_front_only(const SceneInput& in, std::size_t f) { return in.front_onl
 
 void validate_arrays(const SceneInput& in) {
     if (in.face_count == 0) return;
-    if (!in.face_offsets || !in.corner_vertices || !in.reflectance || !in.emission || (!in.positions && in.vertex_count))
+    if (!in.face_offsets || !in.corner_vertices || !in.reflectance || !in.emission ||
+        (!in.positions && in.vertex_count))
         throw InputError("scene arrays: a required array is null");
     if (in.face_offsets[0] != 0) fail(0, "face offsets must start at 0");
     for (std::size_t f = 0; f < in.face_count; ++f) {
@@ -90,10 +91,15 @@ public:
         const auto ab = edge(a, b, n), ac = edge(a, c, n), bc = edge(b, c, n);
         for (int i = 0; i <= n; ++i)
             for (int j = 0; i + j <= n; ++j) {
-                if (j == 0) at(i, j) = ab[i];
-                else if (i == 0) at(i, j) = ac[j];
-                else if (i + j == n) at(i, j) = bc[j];
-                else at(i, j) = add_vertex(p_[a] + (p_[b] - p_[a]) * (double(i) / n) + (p_[c] - p_[a]) * (double(j) / n));
+                if (j == 0)
+                    at(i, j) = ab[i];
+                else if (i == 0)
+                    at(i, j) = ac[j];
+                else if (i + j == n)
+                    at(i, j) = bc[j];
+                else
+                    at(i, j) =
+                        add_vertex(p_[a] + (p_[b] - p_[a]) * (double(i) / n) + (p_[c] - p_[a]) * (double(j) / n));
             }
         for (int i = 0; i < n; ++i)
             for (int j = 0; i + j < n; ++j) {
@@ -109,17 +115,22 @@ public:
         std::vector<int32_t> row(nv + 1), previous;
         for (int i = 1; i <= nu; ++i) {
             for (int j = 0; j <= nv; ++j) {
-                if (j == 0) row[j] = ab[i];
-                else if (j == nv) row[j] = ac[i];
-                else if (i == nu) row[j] = bc[j];
+                if (j == 0)
+                    row[j] = ab[i];
+                else if (j == nv)
+                    row[j] = ac[i];
+                else if (i == nu)
+                    row[j] = bc[j];
                 else {
                     const double s = double(j) / nv;
                     row[j] = add_vertex((1 - s) * DVec3(out_.vertices[ab[i]]) + s * DVec3(out_.vertices[ac[i]]));
                 }
             }
             for (int j = 0; j < nv; ++j) {
-                if (i == 1) add_element({corner_[apex], row[j], row[j + 1], -1});
-                else add_element({previous[j], row[j], row[j + 1], previous[j + 1]});
+                if (i == 1)
+                    add_element({corner_[apex], row[j], row[j + 1], -1});
+                else
+                    add_element({previous[j], row[j], row[j + 1], previous[j + 1]});
             }
             previous = row;
         }
@@ -132,13 +143,18 @@ public:
         const auto ab = edge(a, b, nu), dc = edge(d, c, nu), ad = edge(a, d, nv), bc = edge(b, c, nv);
         for (int j = 0; j <= nv; ++j)
             for (int i = 0; i <= nu; ++i) {
-                if (j == 0) at(i, j) = ab[i];
-                else if (j == nv) at(i, j) = dc[i];
-                else if (i == 0) at(i, j) = ad[j];
-                else if (i == nu) at(i, j) = bc[j];
+                if (j == 0)
+                    at(i, j) = ab[i];
+                else if (j == nv)
+                    at(i, j) = dc[i];
+                else if (i == 0)
+                    at(i, j) = ad[j];
+                else if (i == nu)
+                    at(i, j) = bc[j];
                 else {
                     const double s = double(i) / nu, t = double(j) / nv;
-                    at(i, j) = add_vertex((1 - s) * (1 - t) * p_[a] + s * (1 - t) * p_[b] + s * t * p_[c] + (1 - s) * t * p_[d]);
+                    at(i, j) = add_vertex((1 - s) * (1 - t) * p_[a] + s * (1 - t) * p_[b] + s * t * p_[c] +
+                                          (1 - s) * t * p_[d]);
                 }
             }
         for (int j = 0; j < nv; ++j)
@@ -262,7 +278,8 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             std::snprintf(what, sizeof what,
                           "element_size %g m would make %.3g elements from this polygon%s, beyond the cap of %zu "
                           "for the scene; raise element_size",
-                          double(max_edge), elements, emits_behind ? " (both sides: it emits)" : "", limits.max_elements);
+                          double(max_edge), elements, emits_behind ? " (both sides: it emits)" : "",
+                          limits.max_elements);
             throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
     };
@@ -291,15 +308,16 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     } else if (count == 3) {
         // Regular subdivision needs one count for all three edges, so a short edge may be cut
         // finer than its own length asks for (a T-vertex against a neighbour on that edge).
-        const double n = std::max({segments(length(0, 1), max_edge), segments(length(1, 2), max_edge),
-                                   segments(length(2, 0), max_edge)});
+        const double n = std::max(
+            {segments(length(0, 1), max_edge), segments(length(1, 2), max_edge), segments(length(2, 0), max_edge)});
         check_cap(n * n);
         build.triangle(0, 1, 2, static_cast<int>(n));
     } else if (count == 4 && detail::is_convex(p, normal)) {
         // Opposite edges share a count; they agree with their neighbours when they are equally long.
         double nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
         double nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
-        limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu, nv);
+        limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu,
+                     nv);
         check_cap(nu * nv);
         build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
     } else {
@@ -315,8 +333,8 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             if (m == 4) {
                 piece.nu = std::max(segments(edge_length(0, 1), max_edge), segments(edge_length(3, 2), max_edge));
                 piece.nv = std::max(segments(edge_length(0, 3), max_edge), segments(edge_length(1, 2), max_edge));
-                limit_aspect(std::max(edge_length(0, 1), edge_length(3, 2)), std::max(edge_length(0, 3), edge_length(1, 2)),
-                             limits.max_aspect, piece.nu, piece.nv);
+                limit_aspect(std::max(edge_length(0, 1), edge_length(3, 2)),
+                             std::max(edge_length(0, 3), edge_length(1, 2)), limits.max_aspect, piece.nu, piece.nv);
                 total += piece.nu * piece.nv;
             } else {
                 if (m == 3) {
@@ -386,7 +404,8 @@ void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides)
 
 }  // namespace
 
-BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits, const ProgressFn& progress) {
+BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits,
+                           const ProgressFn& progress) {
     if (!(max_edge >= 0.0f) || !std::isfinite(max_edge)) throw InputError("max_edge must be finite and >= 0");
     validate_arrays(in);
     BuildResult result;
@@ -399,11 +418,14 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     std::vector<char> usable(in.face_count, 0);
     for (std::size_t f = 0; f < in.face_count; ++f) {
         const std::optional<Defect> defect = read_polygon(in, f, p, normal);
-        if (defect) result.skipped.push_back({static_cast<int32_t>(f), *defect});
-        else usable[f] = 1;
+        if (defect)
+            result.skipped.push_back({static_cast<int32_t>(f), *defect});
+        else
+            usable[f] = 1;
     }
-    const std::vector<detail::CutSegment> cuts =
-        limits.cut_intersections ? detail::find_intersections(in, usable, limits.cut_contacts) : std::vector<detail::CutSegment>{};
+    const std::vector<detail::CutSegment> cuts = limits.cut_intersections
+                                                     ? detail::find_intersections(in, usable, limits.cut_contacts)
+                                                     : std::vector<detail::CutSegment>{};
 
     auto cut = cuts.begin();
     std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
@@ -416,9 +438,11 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
-        const auto cut_end = std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
+        const auto cut_end =
+            std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
-            const std::vector<int32_t> corners = subdivide(out, p, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
+            const std::vector<int32_t> corners =
+                subdivide(out, p, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -426,8 +450,8 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const double tolerance = detail::plane_tolerance(p);
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
-            const std::vector<int32_t> corners = subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, max_edge, limits,
-                                                         back_sides);
+            const std::vector<int32_t> corners =
+                subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }

@@ -15,14 +15,14 @@ namespace radiosity {
 /// Polygon f has corners corner_vertices[face_offsets[f] .. face_offsets[f+1]), counter-clockwise
 /// seen from the side its normal points to (Blender's convention).
 struct SceneInput {
-    const float* positions = nullptr;         ///< vertex_count x 3
+    const float* positions = nullptr;  ///< vertex_count x 3
     std::size_t vertex_count = 0;
-    const int32_t* face_offsets = nullptr;    ///< face_count + 1, starts at 0, increasing
-    const int32_t* corner_vertices = nullptr; ///< face_offsets[face_count] vertex indices
+    const int32_t* face_offsets = nullptr;     ///< face_count + 1, starts at 0, increasing
+    const int32_t* corner_vertices = nullptr;  ///< face_offsets[face_count] vertex indices
     std::size_t face_count = 0;
-    const float* reflectance = nullptr;       ///< face_count x 3, each in [0, 1)
-    const float* emission = nullptr;          ///< face_count x 3, emitted radiance, >= 0
-    const int32_t* material = nullptr;        ///< face_count ids; corners never blend across ids. May be null.
+    const float* reflectance = nullptr;  ///< face_count x 3, each in [0, 1)
+    const float* emission = nullptr;     ///< face_count x 3, emitted radiance, >= 0
+    const int32_t* material = nullptr;   ///< face_count ids; corners never blend across ids. May be null.
     /// face_count flags: an emitting face that emits from its front only, as Cycles' area lamps do
     /// (other emitting faces emit from both sides, Elements::side). May be null: none.
     const uint8_t* front_only = nullptr;

@@ -37,9 +37,12 @@ public:
             uv.emplace_back(t[0], t[1]);
         }
         std::vector<std::array<int, 3>> triangles;
-        if (count == 3) triangles = {{0, 1, 2}};
-        else if (count == 4) triangles = {{0, 1, 2}, {0, 2, 3}};
-        else triangles = triangulate(p, glm::normalize(newell(p)));
+        if (count == 3)
+            triangles = {{0, 1, 2}};
+        else if (count == 4)
+            triangles = {{0, 1, 2}, {0, 2, 3}};
+        else
+            triangles = triangulate(p, glm::normalize(newell(p)));
         for (const auto& t : triangles) {
             Triangle tri{p[t[0]], p[t[1]] - p[t[0]], p[t[2]] - p[t[0]], uv[t[0]], uv[t[1]], uv[t[2]], {}};
             const double a = glm::dot(tri.e1, tri.e1), b = glm::dot(tri.e1, tri.e2), c = glm::dot(tri.e2, tri.e2);

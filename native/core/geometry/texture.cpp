@@ -24,10 +24,14 @@ int64_t wrap_mirror(int64_t x, int64_t size) {
 /// Texel index x after the extension; -1 for Clip outside the image.
 int64_t wrap(int64_t x, int64_t size, TextureExtension extension) {
     switch (extension) {
-        case TextureExtension::Repeat: return wrap_periodic(x, size);
-        case TextureExtension::Extend: return std::clamp<int64_t>(x, 0, size - 1);
-        case TextureExtension::Mirror: return wrap_mirror(x, size);
-        case TextureExtension::Clip: return x >= 0 && x < size ? x : -1;
+        case TextureExtension::Repeat:
+            return wrap_periodic(x, size);
+        case TextureExtension::Extend:
+            return std::clamp<int64_t>(x, 0, size - 1);
+        case TextureExtension::Mirror:
+            return wrap_mirror(x, size);
+        case TextureExtension::Clip:
+            return x >= 0 && x < size ? x : -1;
     }
     return -1;
 }
@@ -86,11 +90,13 @@ Rgb texel_mean(const Texture& t) {
 void validate_textures(const SurfaceTextures& in, std::size_t face_count, std::size_t corner_count) {
     for (std::size_t k = 0; k < in.textures.size(); ++k) {
         const Texture& t = in.textures[k];
-        if (t.width <= 0 || t.height <= 0 || !t.rgb) throw InputError("texture " + std::to_string(k) + " has no texels");
+        if (t.width <= 0 || t.height <= 0 || !t.rgb)
+            throw InputError("texture " + std::to_string(k) + " has no texels");
         const std::size_t values = 3 * std::size_t(t.width) * std::size_t(t.height);
         for (std::size_t i = 0; i < values; ++i)
             if (!std::isfinite(t.rgb[i]))
-                throw InputError("texture " + std::to_string(k) + ": texel " + std::to_string(i / 3) + " is not finite");
+                throw InputError("texture " + std::to_string(k) + ": texel " + std::to_string(i / 3) +
+                                 " is not finite");
     }
     const bool textured = in.reflectance_texture || in.emission_texture;
     if (textured && !in.corner_uv && corner_count > 0) throw InputError("textured faces need corner UVs");
@@ -107,7 +113,8 @@ void validate_textures(const SurfaceTextures& in, std::size_t face_count, std::s
                                  " does not exist");
             for (int c = 0; c < 3; ++c)
                 if (!(scale[3 * f + c] >= 0.0f && std::isfinite(scale[3 * f + c])))
-                    throw InputError("polygon " + std::to_string(f) + ": " + what + " texture scale negative or not finite");
+                    throw InputError("polygon " + std::to_string(f) + ": " + what +
+                                     " texture scale negative or not finite");
         }
     };
     check(in.reflectance_texture, in.reflectance_scale, "reflectance");

@@ -51,7 +51,8 @@ std::vector<int32_t> weld_points(const std::vector<Vec3>& points, float toleranc
     std::vector<Vec3> position;  // of each id's first point
     for (std::size_t v = 0; v < points.size(); ++v) {
         const Vec3& p = points[v];
-        const Cell c{static_cast<int64_t>(std::floor(p.x / tolerance)), static_cast<int64_t>(std::floor(p.y / tolerance)),
+        const Cell c{static_cast<int64_t>(std::floor(p.x / tolerance)),
+                     static_cast<int64_t>(std::floor(p.y / tolerance)),
                      static_cast<int64_t>(std::floor(p.z / tolerance))};
         auto within = [&](const Cell& cell) {
             const auto it = representative.find(cell);

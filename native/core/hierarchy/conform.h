@@ -35,7 +35,9 @@ private:
 
     Cell& cell(std::size_t i, std::size_t j) { return cells_[i * n_ + j]; }
     void consider(std::size_t i, std::size_t j, int32_t k, int32_t l, Cell& best);
-    bool on_one_line(int32_t a, int32_t b, int32_t c) const { return ((*edges_)[a] & (*edges_)[b] & (*edges_)[c]) != 0; }
+    bool on_one_line(int32_t a, int32_t b, int32_t c) const {
+        return ((*edges_)[a] & (*edges_)[b] & (*edges_)[c]) != 0;
+    }
     float corner_cos(int32_t before, int32_t at, int32_t after) const;
 
     std::size_t n_ = 0;

@@ -2,8 +2,8 @@
 /// @brief Links' light at the output corners (hierarchy/gather.h).
 #include "hierarchy/gather.h"
 
-#include "hierarchy/links.h"
 #include "common/parallel_rows.h"
+#include "hierarchy/links.h"
 #include "transport/near_field.h"
 
 #include <glm/geometric.hpp>
@@ -21,8 +21,10 @@ struct LeafRange {
 std::vector<LeafRange> leaf_ranges(const std::vector<int32_t>& leaf) {
     std::vector<LeafRange> ranges;
     for (std::size_t e = 0; e < leaf.size(); ++e)
-        if (e == 0 || leaf[e] != leaf[e - 1]) ranges.push_back({e, e + 1});
-        else ranges.back().end = e + 1;
+        if (e == 0 || leaf[e] != leaf[e - 1])
+            ranges.push_back({e, e + 1});
+        else
+            ranges.back().end = e + 1;
     return ranges;
 }
 
@@ -46,8 +48,10 @@ public:
 
     double at(const Vec3& x) const {
         if (corner_count_ > 0)
-            return in_plane_of(tree_, source_, x, normal_) ? 0.0 : point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
-                                    glm::dvec3(source_.normal));
+            return in_plane_of(tree_, source_, x, normal_)
+                       ? 0.0
+                       : point_to_polygon(glm::dvec3(x), glm::dvec3(normal_), polygon_, corner_count_,
+                                          glm::dvec3(source_.normal));
         const Vec3 d = source_.centre - x;
         if (source_.is_element()) return pair_kernel(normal_, source_.normal, d);
         const double d2 = glm::dot(d, d);
@@ -95,8 +99,8 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
     std::vector<LeafRange> ranges = leaf_ranges(leaf);
     ranges.erase(std::remove_if(ranges.begin(), ranges.end(),
                                 [&](const LeafRange& r) {
-                                    return !(max_channel(mesh.reflectance[r.begin]) > 0.0) ||
-                                           mesh.is_back(r.begin) || !resolved(tree, leaf[r.begin]);
+                                    return !(max_channel(mesh.reflectance[r.begin]) > 0.0) || mesh.is_back(r.begin) ||
+                                           !resolved(tree, leaf[r.begin]);
                                 }),
                  ranges.end());
     detail::parallel_rows("output", ranges.size(), 16, 0, progress, [&](std::size_t i) {
@@ -128,8 +132,8 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
             for (const Link& link : receiver.links) {
                 const Node& source = tree.nodes[link.source];
                 if (source.is_lamp()) continue;
-                const Rgb strength = source.is_element() ? source.radiance
-                                                         : intensity(tree, source, -towards_source(receiver, source));
+                const Rgb strength =
+                    source.is_element() ? source.radiance : intensity(tree, source, -towards_source(receiver, source));
                 const Rgb value = double(link.factor) * strength;
                 if (!(max_channel(value) > 0.0)) continue;
                 gathered.push_back({&receiver, &link, value});
@@ -159,8 +163,7 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
             // A partly hidden element source: how much of it each corner sees, by its own rays.
             // One ray per corner, as a corner sums many such links and their noise averages
             // out; four for a link that brings a sixteenth of the leaf's light or more.
-            const double visible =
-                source.is_element() ? link->factor / (over_receiver * shape.factor_scale()) : 1.0;
+            const double visible = source.is_element() ? link->factor / (over_receiver * shape.factor_scale()) : 1.0;
             const bool partial = visible > 0.0 && visible < 0.98 && resolved(tree, link->source);
             const int grid = max_channel(value) >= max_channel(mean) / 16.0 ? 2 : 1;
             for (std::size_t p = 0; p < points.size(); ++p) {
@@ -181,8 +184,6 @@ void gather_at_corners(const Tree& tree, const Visibility& visibility, const Ele
     });
 }
 
-bool links_gathered(const Tree& tree, int32_t node) {
-    return tree.nodes[node].is_element() && resolved(tree, node);
-}
+bool links_gathered(const Tree& tree, int32_t node) { return tree.nodes[node].is_element() && resolved(tree, node); }
 
 }  // namespace radiosity::hr

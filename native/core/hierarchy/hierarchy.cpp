@@ -3,12 +3,12 @@
 /// conforming leaf mesh and its corner colours (hierarchy.h).
 #include "hierarchy/hierarchy.h"
 
+#include "common/report_progress.h"
 #include "hierarchy/gather.h"
 #include "hierarchy/lamp_detail.h"
 #include "hierarchy/links.h"
 #include "hierarchy/output.h"
 #include "hierarchy/solve.h"
-#include "common/report_progress.h"
 #include "transport/world_light.h"
 
 #include <tbb/parallel_for.h>
@@ -74,7 +74,8 @@ BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& 
     return patches;
 }
 
-HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings, const ProgressFn& progress) {
+HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings,
+                                  const ProgressFn& progress) {
     check(settings);
     HierarchyResult result;
     // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
@@ -121,7 +122,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
         result.residual = sweep.residual;
         result.converged = sweep.converged;
         if (!sweep.finite)
-            throw NumericalError("solve", sweep.bad_node >= 0 ? hr::input_polygon(tree, tree.nodes[sweep.bad_node]) : -1);
+            throw NumericalError("solve",
+                                 sweep.bad_node >= 0 ? hr::input_polygon(tree, tree.nodes[sweep.bad_node]) : -1);
         ++round;
         if (round >= settings.max_rounds || refiner.memory_cap_reached()) break;  // capped: nothing may split
         const double scale = hr::reference_radiance(tree);
@@ -152,8 +154,8 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     std::vector<Rgb> rest(result.output.size());
     for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
     if (!world_light.empty()) {
-        const std::vector<Rgb> world_at_corners = detail::world_light_at_corners(
-            result.output, settings.world, visibility, tree.scene_size, progress);
+        const std::vector<Rgb> world_at_corners =
+            detail::world_light_at_corners(result.output, settings.world, visibility, tree.scene_size, progress);
         for (std::size_t k = 0; k < corner_light.size(); ++k) corner_light[k] += world_at_corners[k];
         for (std::size_t e = 0; e < rest.size(); ++e) {
             const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;

@@ -38,9 +38,9 @@
 /// interpolated from the leaves' means.
 #pragma once
 
+#include "geometry/scene.h"
 #include "output/interpolation.h"
 #include "transport/lights.h"
-#include "geometry/scene.h"
 #include "transport/world.h"
 
 #include <cstddef>
@@ -53,16 +53,16 @@ struct HierarchySettings {
     /// A link is refined when its estimated radiance error exceeds this times the scene's mean
     /// radiance (area-weighted). Smaller: more elements and links, a closer answer.
     double refine_tolerance = 0.02;
-    double tolerance = 1e-4;         ///< relative residual of the last round's solve
-    int max_iterations = 1000;       ///< Jacobi sweeps per round
-    int max_rounds = 12;             ///< refinement rounds
-    float hard_edge_angle = 0.5235988f; ///< radians, for the corner colours
+    double tolerance = 1e-4;             ///< relative residual of the last round's solve
+    int max_iterations = 1000;           ///< Jacobi sweeps per round
+    int max_rounds = 12;                 ///< refinement rounds
+    float hard_edge_angle = 0.5235988f;  ///< radians, for the corner colours
     /// Cap on patches (leaves are capped by max_elements too); contact lines are cut.
     ElementLimits limits = ElementLimits().with_contacts();
     /// Cap on the bytes of nodes and links (HierarchyStats::bytes; the process peaks at about
     /// twice that): pairs stop splitting once it is reached. 0: no cap.
     std::size_t max_bytes = 0;
-    Lights lights;                   ///< point and spot lamps and suns: sources of links
+    Lights lights;  ///< point and spot lamps and suns: sources of links
     /// The world's light (none by default): its first reflection, the mean over each patch, joins
     /// the patch's emission for the solve; the output's corners show it as it is at each corner
     /// (WorldLight::point_samples rays per corner), with the patch's mean taken out of the rest.
@@ -74,21 +74,21 @@ struct HierarchySettings {
 
 struct HierarchyStats {
     std::size_t patches = 0, clusters = 0, leaves = 0, nodes = 0, links = 0, rays = 0;
-    std::size_t bytes = 0;           ///< nodes and links held at the end (the bulk of the memory)
-    std::size_t lamp_splits = 0;     ///< leaves split after the solve for the lamps' light
+    std::size_t bytes = 0;        ///< nodes and links held at the end (the bulk of the memory)
+    std::size_t lamp_splits = 0;  ///< leaves split after the solve for the lamps' light
     int rounds = 0, iterations = 0;
-    bool leaf_cap_reached = false;   ///< refinement stopped early at ElementLimits::max_elements
-    bool memory_cap_reached = false; ///< refinement stopped early at HierarchySettings::max_bytes
+    bool leaf_cap_reached = false;    ///< refinement stopped early at ElementLimits::max_elements
+    bool memory_cap_reached = false;  ///< refinement stopped early at HierarchySettings::max_bytes
 };
 
 struct HierarchyResult {
-    BuildResult build;               ///< the patches (one element per polygon or n-gon piece)
+    BuildResult build;  ///< the patches (one element per polygon or n-gon piece)
     /// Output mesh: the leaves, with every hanging vertex of a finer neighbour on their edges
     /// (leaves that have one are split into triangles and quads with those vertices as corners),
     /// so the colours have no cracks.
-    Elements output;                 ///< emission: E + rho G from the lamps (their first reflection)
+    Elements output;                   ///< emission: E + rho G from the lamps (their first reflection)
     std::vector<Rgb> output_radiance;  ///< per output element: its leaf's radiance
-    CornerColors colors;             ///< interpolated on the output mesh; input corners for ORIGINAL
+    CornerColors colors;               ///< interpolated on the output mesh; input corners for ORIGINAL
     HierarchyStats stats;
     double residual = 0.0;
     bool converged = false;

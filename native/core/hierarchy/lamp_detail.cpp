@@ -2,11 +2,11 @@
 /// @brief Leaves split for the lamps' light, and that light at the output's corners (hierarchy/lamp_detail.h).
 #include "hierarchy/lamp_detail.h"
 
-#include "transport/lamp_points.h"
 #include "common/parallel_rows.h"
+#include "transport/lamp_points.h"
 
-#include <glm/common.hpp>
 #include <tbb/concurrent_vector.h>
+#include <glm/common.hpp>
 
 #include <atomic>
 #include <cmath>

@@ -6,9 +6,9 @@
 #include "common/report_progress.h"
 #include "transport/near_field.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <cmath>
@@ -122,10 +122,12 @@ void Refiner::measure_openness(const ProgressFn& progress) {
             seed = mix(seed);
             const float phi = 2.0f * float(M_PI) * float(seed >> 8) / 16777216.0f;
             const Vec3 normal = patch.normal;
-            const Vec3 t = glm::normalize(glm::cross(std::abs(normal.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0), normal));
+            const Vec3 t =
+                glm::normalize(glm::cross(std::abs(normal.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0), normal));
             const Vec3 b = glm::cross(normal, t);
             const float radial = std::sqrt(u1);
-            const Vec3 direction = radial * std::cos(phi) * t + radial * std::sin(phi) * b + std::sqrt(1.0f - u1) * normal;
+            const Vec3 direction =
+                radial * std::cos(phi) * t + radial * std::sin(phi) * b + std::sqrt(1.0f - u1) * normal;
             const glm::dvec3 m(from - c.centre), d(direction);
             const double half = glm::dot(m, d), rest = glm::dot(m, m) - double(c.radius) * c.radius;
             const double length = -half + std::sqrt(std::max(0.0, half * half - rest));
@@ -148,16 +150,20 @@ bool Refiner::is_must_split(const Link& link) { return link.uncertainty == std::
 
 Rgb intensity(const Tree& tree, const Node& source, const Vec3& u) {
     switch (source.kind) {
-        case Kind::PointLamp: return tree.lights.points[source.lamp].intensity;  // profile: in the factor
-        case Kind::Sun: return tree.lights.suns[source.lamp].irradiance;
-        default: break;
+        case Kind::PointLamp:
+            return tree.lights.points[source.lamp].intensity;  // profile: in the factor
+        case Kind::Sun:
+            return tree.lights.suns[source.lamp].irradiance;
+        default:
+            break;
     }
     const glm::dvec3 direction(u);
     auto towards = [&](const Emitter& emitter) {
         Rgb out;
         for (int c = 0; c < 3; ++c) {
             const glm::dvec3& m = emitter.moment[c];
-            out[c] = std::max(0.0, glm::dot(m, direction)) + std::max(0.0, emitter.power[c] - emitter.moment_length[c]) / 4.0;
+            out[c] = std::max(0.0, glm::dot(m, direction)) +
+                     std::max(0.0, emitter.power[c] - emitter.moment_length[c]) / 4.0;
         }
         return out;
     };
@@ -268,7 +274,8 @@ Refiner::Estimate Refiner::estimate_elements(const Node& r, const Node& s) const
     const double distance = glm::length(s.centre - r.centre);
     const double near = distance > 0.0 ? std::min(1.0, 2.0 * s.radius / distance) : 1.0;
     if (tree_.can_split(s))
-        e.link.source_doubt = static_cast<float>(max_channel(r.reflectance) * F.mean() * (partial ? 1.0 : near * near * near));
+        e.link.source_doubt =
+            static_cast<float>(max_channel(r.reflectance) * F.mean() * (partial ? 1.0 : near * near * near));
     e.useful = e.link.factor > 0.0f || e.link.uncertainty > 0.0f || e.link.source_doubt > 0.0f || e.link.steps > 0.0f;
     return e;
 }
@@ -285,9 +292,12 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     std::array<Vec3, 4> P, Q;
     const int np = r.is_element() ? element_samples(tree_, r, P) : cluster_samples(r, seed, false, P);
     int nq = 1;
-    if (s.kind == Kind::Cluster) nq = cluster_samples(s, seed ^ 0x5bd1e995U, true, Q);
-    else if (s.kind == Kind::Element) nq = element_samples(tree_, s, Q);
-    else Q[0] = s.centre;
+    if (s.kind == Kind::Cluster)
+        nq = cluster_samples(s, seed ^ 0x5bd1e995U, true, Q);
+    else if (s.kind == Kind::Element)
+        nq = element_samples(tree_, s, Q);
+    else
+        Q[0] = s.centre;
 
     const PointLight* lamp = s.kind == Kind::PointLamp ? &tree_.lights.points[s.lamp] : nullptr;
     auto transfer = [&](const Vec3& x, const Vec3& q) {  // per unit of the source's intensity, x from q
@@ -316,7 +326,8 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
         probe_count = element_probes(tree_, r, probes);
         for (int k = 0; k < probe_count; ++k) at[k] = transfer_at(probes[k]);
     }
-    const double highest = std::max(g.high, probe_count ? *std::max_element(at.begin(), at.begin() + probe_count) : 0.0);
+    const double highest =
+        std::max(g.high, probe_count ? *std::max_element(at.begin(), at.begin() + probe_count) : 0.0);
     if (!std::isfinite(highest)) {  // a point source on the receiver: split, or no link
         return must_split();
     }
@@ -344,7 +355,8 @@ Refiner::Estimate Refiner::estimate_point_source(const Node& r, const Node& s) c
     std::vector<Vec3> from(P.begin(), P.begin() + np);
     if (r.is_element() && tree_.can_split(r)) {
         const bool lamp_source = s.is_lamp();
-        const int grid = lamp_source ? std::clamp(int(std::ceil(r.longest_edge / (4.0f * tree_.min_element_size()))), 4, 16) : 4;
+        const int grid =
+            lamp_source ? std::clamp(int(std::ceil(r.longest_edge / (4.0f * tree_.min_element_size()))), 4, 16) : 4;
         from.resize(std::size_t(grid) * grid);
         jittered_points(tree_, r, grid, seed, from.data());
     }
@@ -483,7 +495,7 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
     tbb::enumerable_thread_specific<Output> outputs;
     tbb::enumerable_thread_specific<std::size_t> rays(0);
     links_ += pending.size();  // each waiting pair may become a link: the memory cap counts it
-    std::size_t done = 0;  // pairs of the levels before: the bar counts pairs over all levels
+    std::size_t done = 0;      // pairs of the levels before: the bar counts pairs over all levels
     ProgressFn level_progress;
     if (progress)
         level_progress = [&](const Progress& p) {

@@ -2,8 +2,8 @@
 /// @brief Leaves to a conforming mesh (hierarchy/output.h).
 #include "hierarchy/output.h"
 
-#include "hierarchy/conform.h"
 #include "common/report_progress.h"
+#include "hierarchy/conform.h"
 
 #include <glm/geometric.hpp>
 
@@ -13,7 +13,7 @@ namespace radiosity::hr {
 namespace {
 
 constexpr std::size_t kPatchesPerReport = 65536;  ///< a small part of a second of the leaf mesh
-constexpr std::size_t kMostPointsToSplit = 256;    ///< see MeshWriter::split_leaf
+constexpr std::size_t kMostPointsToSplit = 256;   ///< see MeshWriter::split_leaf
 
 /// Appends the vertices along a -> b, from a up to but without b, where neighbours split it.
 void edge_vertices(const Tree& tree, int32_t a, int32_t b, std::vector<int32_t>& out) {
@@ -166,8 +166,8 @@ private:
     Rgb emission_{0.0}, lamp_part_{0.0};
     int32_t leaf_ = -1, polygon_ = -1;
     std::unordered_map<uint64_t, int32_t> local_;
-    std::vector<int32_t> boundary_;    ///< the current leaf's vertices: corners and those on its edges
-    std::vector<uint8_t> on_edges_;    ///< per boundary vertex: bit k when on the leaf's edge k
+    std::vector<int32_t> boundary_;  ///< the current leaf's vertices: corners and those on its edges
+    std::vector<uint8_t> on_edges_;  ///< per boundary vertex: bit k when on the leaf's edge k
     std::vector<Vec3> points_;
     std::vector<std::array<int32_t, 4>> pieces_;
     LeafSplitter splitter_;
@@ -197,10 +197,12 @@ LeafMesh leaf_mesh(const Tree& tree, const BuildResult& build, const std::vector
     const Elements& patches = build.elements;
     std::vector<int32_t> polygon_of_vertex(patches.vertices.size(), -1);
     for (std::size_t p = 0; p < patches.size(); ++p)
-        for (int k = 0; k < (patches.is_triangle(p) ? 3 : 4); ++k) polygon_of_vertex[patches.corners[p][k]] = patches.polygon[p];
+        for (int k = 0; k < (patches.is_triangle(p) ? 3 : 4); ++k)
+            polygon_of_vertex[patches.corners[p][k]] = patches.polygon[p];
     mesh.elements.corner_vertex.reserve(patches.corner_vertex.size());
     for (int32_t v : patches.corner_vertex)
-        mesh.elements.corner_vertex.push_back(v < 0 ? -1 : writer.vertex_in(polygon_of_vertex[v], tree.patch_vertex[v]));
+        mesh.elements.corner_vertex.push_back(v < 0 ? -1
+                                                    : writer.vertex_in(polygon_of_vertex[v], tree.patch_vertex[v]));
     return mesh;
 }
 

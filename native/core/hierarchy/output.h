@@ -7,10 +7,10 @@
 namespace radiosity::hr {
 
 struct LeafMesh {
-    Elements elements;          ///< one element per leaf, or a few triangles and quads (see below)
-    std::vector<Rgb> radiance;  ///< per element: its leaf's radiance
-    std::vector<Rgb> lamp_part; ///< per element: the part of that radiance the lamps gave, rho G_lamps
-    std::vector<int32_t> leaf;  ///< per element: its leaf's node (a split leaf's elements follow each other)
+    Elements elements;           ///< one element per leaf, or a few triangles and quads (see below)
+    std::vector<Rgb> radiance;   ///< per element: its leaf's radiance
+    std::vector<Rgb> lamp_part;  ///< per element: the part of that radiance the lamps gave, rho G_lamps
+    std::vector<int32_t> leaf;   ///< per element: its leaf's node (a split leaf's elements follow each other)
     std::size_t leaves = 0;
 };
 

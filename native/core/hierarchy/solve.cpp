@@ -4,11 +4,11 @@
 
 #include "hierarchy/links.h"
 
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
@@ -41,7 +41,8 @@ void gather(Tree& tree, bool lamps_only = false) {
             r.gathered = Rgb(0.0);
             if (r.kind == Kind::Cluster) tree.cubes[r.cluster] = AmbientCube{};
             for (std::size_t k = 0; k < r.links.size(); ++k) {
-                if (k + kPrefetchLinks < r.links.size()) prefetch_source(tree.nodes[r.links[k + kPrefetchLinks].source]);
+                if (k + kPrefetchLinks < r.links.size())
+                    prefetch_source(tree.nodes[r.links[k + kPrefetchLinks].source]);
                 const Link& l = r.links[k];
                 const Node& s = tree.nodes[l.source];
                 if (lamps_only && !s.is_lamp()) continue;
@@ -51,8 +52,10 @@ void gather(Tree& tree, bool lamps_only = false) {
                 }
                 const Vec3 direction = towards_source(r, s);
                 const Rgb value = double(l.factor) * intensity(tree, s, -direction);
-                if (r.is_element()) r.gathered += value;
-                else deposit(tree.cubes[r.cluster], direction, value);
+                if (r.is_element())
+                    r.gathered += value;
+                else
+                    deposit(tree.cubes[r.cluster], direction, value);
             }
         }
     });
@@ -86,8 +89,10 @@ void pass_down(const Tree& tree, const Node& cluster, const AmbientCube& cube_ab
     for (int k = 0; k < cluster.child_count; ++k) {
         const int32_t c = child(cluster, k);
         const Node& below = tree.nodes[c];
-        if (below.is_element()) visit(c, AmbientCube{}, read_cube(cube, below.normal));
-        else visit(c, cube, Rgb(0.0));
+        if (below.is_element())
+            visit(c, AmbientCube{}, read_cube(cube, below.normal));
+        else
+            visit(c, cube, Rgb(0.0));
     }
 }
 
@@ -127,7 +132,8 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
         }
         for (int ch = 0; ch < 3; ++ch) emitter.moment_length[ch] = glm::length(emitter.moment[ch]);
         ClusterSplit& split = tree.splits[n.cluster];
-        split.power_share = power[0] + power[1] > 0.0 ? static_cast<float>(power[0] / (power[0] + power[1])) : split.area_share;
+        split.power_share =
+            power[0] + power[1] > 0.0 ? static_cast<float>(power[0] / (power[0] + power[1])) : split.area_share;
         return;
     }
     const Rgb gathered = gathered_above + n.gathered;
@@ -153,7 +159,8 @@ void push_pull(Tree& tree, int32_t id, const AmbientCube& cube_above, const Rgb&
             n.radiance = sum / area;
         } else {
             n.radiance = Rgb(0.0);
-            for (int k = 0; k < n.child_count; ++k) n.radiance += tree.nodes[child(n, k)].radiance / double(n.child_count);
+            for (int k = 0; k < n.child_count; ++k)
+                n.radiance += tree.nodes[child(n, k)].radiance / double(n.child_count);
         }
     }
     set_range(tree, n);

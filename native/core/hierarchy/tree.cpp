@@ -126,7 +126,8 @@ Tree::Tree(const BuildResult& build, const Lights& lights_in, float min_element_
         n.lamp = static_cast<int32_t>(index);
         return n;
     };
-    for (std::size_t l = 0; l < lights.points.size(); ++l) add_lamp(Kind::PointLamp, l).centre = lights.points[l].position;
+    for (std::size_t l = 0; l < lights.points.size(); ++l)
+        add_lamp(Kind::PointLamp, l).centre = lights.points[l].position;
     for (std::size_t l = 0; l < lights.suns.size(); ++l) add_lamp(Kind::Sun, l).normal = lights.suns[l].direction;
 }
 

@@ -5,8 +5,8 @@
 
 #include "hierarchy/hierarchy.h"
 
-#include <glm/geometric.hpp>
 #include <tbb/concurrent_vector.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
@@ -63,9 +63,9 @@ struct Link {
 
 /// Per channel: max(0, M . u) + (S - |M|) / 4 is a cluster's intensity towards u (hierarchy.h).
 struct Emitter {
-    Rgb power{0.0};                 ///< S = sum L A
+    Rgb power{0.0};                      ///< S = sum L A
     std::array<glm::dvec3, 3> moment{};  ///< M = sum L A n, per channel
-    Rgb moment_length{0.0};         ///< |M| per channel (intensity() reads it on every link, every sweep)
+    Rgb moment_length{0.0};              ///< |M| per channel (intensity() reads it on every link, every sweep)
 };
 
 /// A cluster's two children and the first one's share of the power (after each solve) and of the
@@ -88,25 +88,25 @@ struct Node {
     /// push-pull's area mean of them would be 0 / 0.
     bool collapsed = false;
     int32_t parent = -1;
-    int32_t first_child = -1;       ///< elements: 4 contiguous children; clusters: 2, see child()
-    int32_t second_child = -1;      ///< clusters only
+    int32_t first_child = -1;   ///< elements: 4 contiguous children; clusters: 2, see child()
+    int32_t second_child = -1;  ///< clusters only
     int32_t child_count = 0;
-    int32_t lamp = -1;              ///< index into Lights::points or ::suns for lamp nodes
-    int32_t cluster = -1;           ///< clusters: index into Tree::emitters, ::cubes and ::splits
+    int32_t lamp = -1;     ///< index into Lights::points or ::suns for lamp nodes
+    int32_t cluster = -1;  ///< clusters: index into Tree::emitters, ::cubes and ::splits
     // Geometry (fixed once the node exists).
     std::array<int32_t, 4> corners{-1, -1, -1, -1};  ///< elements: vertex ids, [3] = -1 for triangles
-    int32_t patch = -1;             ///< elements: the patch they split from (its polygon, material)
-    int32_t patch_begin = 0, patch_end = 0;  ///< clusters: range of Tree::patch_order
+    int32_t patch = -1;                              ///< elements: the patch they split from (its polygon, material)
+    int32_t patch_begin = 0, patch_end = 0;          ///< clusters: range of Tree::patch_order
     Vec3 centre{0.0f}, normal{0.0f};
     float area = 0.0f;
-    float radius = 0.0f;            ///< bounding sphere about `centre`
+    float radius = 0.0f;  ///< bounding sphere about `centre`
     float longest_edge = 0.0f;
     Rgb reflectance{0.0}, emission{0.0};  ///< clusters: the largest reflectance inside
     // Solution.
-    Rgb radiance{0.0};              ///< elements: mean leaving radiance
+    Rgb radiance{0.0};                                ///< elements: mean leaving radiance
     float radiance_low = 0.0f, radiance_high = 0.0f;  ///< elements: range of the leaves below (largest channel)
-    Rgb gathered{0.0};              ///< elements: this sweep's sum over links
-    std::vector<Link> links;        ///< what this node gathers from
+    Rgb gathered{0.0};                                ///< elements: this sweep's sum over links
+    std::vector<Link> links;                          ///< what this node gathers from
 
     bool is_element() const { return kind == Kind::Element; }
     bool is_leaf() const { return child_count == 0; }
@@ -178,9 +178,9 @@ public:
     std::vector<Emitter> emitters;
     std::vector<AmbientCube> cubes;
     std::vector<ClusterSplit> splits;
-    std::vector<Vec3> patch_centres;        ///< per patch: Node::centre, where those walks end
-    std::vector<int32_t> patch_polygon;     ///< per patch: its input polygon (Elements::polygon)
-    float scene_size = 0.0f;                ///< bounding box diagonal, metres
+    std::vector<Vec3> patch_centres;     ///< per patch: Node::centre, where those walks end
+    std::vector<int32_t> patch_polygon;  ///< per patch: its input polygon (Elements::polygon)
+    float scene_size = 0.0f;             ///< bounding box diagonal, metres
     /// Points closer than this are one vertex (detail::weld_tolerance), and a point closer than
     /// this to a plane lies in it (in_plane_of).
     float weld_tolerance = 0.0f;

@@ -108,8 +108,10 @@ void MediumTracer::walk(const Grid& g, const Vec3& origin, const Vec3& d, float 
             const Channels after(tau.r * std::exp(-K.r * length), tau.g * std::exp(-K.g * length),
                                  tau.b * std::exp(-K.b * length));
             // A merged zone spans several voxels: one credit per zone crossed, not per voxel.
-            if (!credits.empty() && credits.back().zone == k) credits.back().fraction += tau - after;
-            else credits.push_back({k, tau - after});
+            if (!credits.empty() && credits.back().zone == k)
+                credits.back().fraction += tau - after;
+            else
+                credits.push_back({k, tau - after});
             tau = after;
             if (tau.r < kOpaque && tau.g < kOpaque && tau.b < kOpaque) return;
         }

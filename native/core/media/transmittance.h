@@ -7,7 +7,8 @@
 ///   tau_end + sum of credits = 1
 /// up to float rounding: light that leaves a ray is taken up by exactly one zone (energy is
 /// conserved by construction). A zone's credit is also what it adds to the radiance seen along the
-/// ray when it has uniform radiance J_k: the zonal method's ray integral (Rushmeier & Torrance 1987) in zone k gives J_k times it.
+/// ray when it has uniform radiance J_k: the zonal method's ray integral (Rushmeier & Torrance 1987) in zone k gives
+/// J_k times it.
 #pragma once
 
 #include "media/volume.h"
@@ -26,15 +27,16 @@ struct ZoneCredit {
     Channels fraction;
 };
 
-/// Walks rays through the zones of a set of media, voxel by voxel, crediting each voxel's zone. Read-only after construction: share it between threads.
+/// Walks rays through the zones of a set of media, voxel by voxel, crediting each voxel's zone. Read-only after
+/// construction: share it between threads.
 class MediumTracer {
 public:
     /// `zones` must be build_zones(media); the tracer keeps no reference to either.
     MediumTracer(const std::vector<Medium>& media, const Zones& zones);
 
     /// Transmittance from `origin` to origin + t_max * direction (`direction` unit; t_max may be
-    /// infinite), replacing `credits` with the zones crossed in ray order (one credit per stretch in a zone). The walk stops early
-    /// once tau < 1e-7 in every channel; the returned tau still closes the sum to 1.
+    /// infinite), replacing `credits` with the zones crossed in ray order (one credit per stretch in a zone). The walk
+    /// stops early once tau < 1e-7 in every channel; the returned tau still closes the sum to 1.
     Channels trace(const Vec3& origin, const Vec3& direction, float t_max, std::vector<ZoneCredit>& credits) const;
 
 private:

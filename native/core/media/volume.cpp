@@ -45,7 +45,8 @@ bool finite(const Rgb& v) { return std::isfinite(v.r) && std::isfinite(v.g) && s
 
 void check_medium(const Medium& m, std::size_t index) {
     const std::string name = "medium " + std::to_string(index);
-    if (!(m.voxel_size > 0.0f) || !std::isfinite(m.voxel_size)) throw InputError(name + ": voxel_size must be positive");
+    if (!(m.voxel_size > 0.0f) || !std::isfinite(m.voxel_size))
+        throw InputError(name + ": voxel_size must be positive");
     if (m.dims[0] < 0 || m.dims[1] < 0 || m.dims[2] < 0) throw InputError(name + ": negative dims");
     const std::size_t n = m.voxel_count();
     if (m.extinction.size() != n || m.albedo.size() != n || m.emission.size() != n)
@@ -60,7 +61,8 @@ void check_voxel(const Medium& m, std::size_t index, std::size_t v) {
         if (K[ch] < 0.0 || e[ch] < 0.0) throw InputError(where + ": negative extinction or emission");
         if (a[ch] < 0.0 || a[ch] > 1.0) throw InputError(where + ": albedo outside [0, 1]");
         if (K[ch] == 0.0 && e[ch] > 0.0)
-            throw InputError(where + ": emission without extinction (the zonal method needs K_t > 0 where a medium emits)");
+            throw InputError(where +
+                             ": emission without extinction (the zonal method needs K_t > 0 where a medium emits)");
     }
 }
 
@@ -89,7 +91,8 @@ public:
         for (int32_t k = 0; k < 2; ++k)
             for (int32_t j = 0; j < 2; ++j)
                 for (int32_t i = 0; i < 2; ++i) {
-                    const std::array<int32_t, 3> child{corner[0] + i * half, corner[1] + j * half, corner[2] + k * half};
+                    const std::array<int32_t, 3> child{corner[0] + i * half, corner[1] + j * half,
+                                                       corner[2] + k * half};
                     if (child[0] < m_.dims[0] && child[1] < m_.dims[1] && child[2] < m_.dims[2]) add(child, half);
                 }
     }

@@ -10,7 +10,8 @@
 ///
 /// Units (radiance, as the surface system): a voxel's `emission` is Cycles' volume emission,
 /// radiance added per metre of path (dL/ds = -K_t L + emission + sigma_s L_in). A zone's
-/// radiance J_k is the zone radiosity B_k / pi of Rushmeier & Torrance 1987, the radiance it sends out by emission and scattering:
+/// radiance J_k is the zone radiosity B_k / pi of Rushmeier & Torrance 1987, the radiance it sends out by emission and
+/// scattering:
 ///   J_k = emission_k / K_t,k + Omega_k * (incident radiance, mean over the zone and all directions),
 /// which is their zone equation divided by 4 pi K_t V_k: (1 - Omega) E = K_a E / K_t with
 /// K_a E the emission coefficient. So `Zones::emitted` = emission / K_t plays the role of a
@@ -27,9 +28,9 @@ namespace radiosity {
 
 /// Absorption, scattering and emission coefficients of a medium at a point (per RGB channel).
 struct VolumeCoefficients {
-    Rgb scattering{0.0};  ///< sigma_s, 1/m
-    Rgb absorption{0.0};  ///< sigma_a, 1/m
-    Rgb emission{0.0};    ///< radiance per metre of path
+    Rgb scattering{0.0};                                        ///< sigma_s, 1/m
+    Rgb absorption{0.0};                                        ///< sigma_a, 1/m
+    Rgb emission{0.0};                                          ///< radiance per metre of path
     Rgb extinction() const { return scattering + absorption; }  ///< K_t = sigma_s + sigma_a
 };
 
@@ -46,33 +47,35 @@ VolumeCoefficients principled_volume(const Rgb& color, double density, const Rgb
 /// A medium on a regular grid of cubic voxels. Voxel (x, y, z) covers
 /// origin + voxel_size * [x, x+1] x [y, y+1] x [z, z+1]; arrays are indexed x + dims[0] * (y + dims[1] * z).
 struct Medium {
-    Vec3 origin{0.0f};                    ///< world position of the grid's minimum corner, metres
-    float voxel_size = 0.0f;              ///< voxel edge, metres
+    Vec3 origin{0.0f};        ///< world position of the grid's minimum corner, metres
+    float voxel_size = 0.0f;  ///< voxel edge, metres
     std::array<int32_t, 3> dims{0, 0, 0};
-    std::vector<Rgb> extinction;          ///< K_t per voxel, 1/m, >= 0
-    std::vector<Rgb> albedo;              ///< Omega = sigma_s / K_t per voxel, in [0, 1]
-    std::vector<Rgb> emission;            ///< radiance per metre per voxel, >= 0; 0 where K_t = 0
+    std::vector<Rgb> extinction;  ///< K_t per voxel, 1/m, >= 0
+    std::vector<Rgb> albedo;      ///< Omega = sigma_s / K_t per voxel, in [0, 1]
+    std::vector<Rgb> emission;    ///< radiance per metre per voxel, >= 0; 0 where K_t = 0
 
     /// An empty (all zero) grid of the given shape.
     Medium(const Vec3& origin, float voxel_size, const std::array<int32_t, 3>& dims);
     Medium() = default;
 
     std::size_t voxel_count() const { return std::size_t(dims[0]) * dims[1] * dims[2]; }
-    std::size_t index(int32_t x, int32_t y, int32_t z) const { return x + std::size_t(dims[0]) * (y + std::size_t(dims[1]) * z); }
+    std::size_t index(int32_t x, int32_t y, int32_t z) const {
+        return x + std::size_t(dims[0]) * (y + std::size_t(dims[1]) * z);
+    }
     /// Sets a voxel from coefficients: K_t, Omega = sigma_s / K_t (0 where K_t = 0), emission.
     void set(std::size_t voxel, const VolumeCoefficients& c);
 };
 
 /// The zones of all media, medium by medium: cubes of block^3 voxels with K_t > 0 in some channel.
 struct Zones {
-    std::vector<int32_t> medium;   ///< index into the media
-    std::vector<int32_t> voxel;    ///< linear index of the block's minimum-corner voxel in its medium
-    std::vector<int32_t> block;    ///< voxels per edge: 1, or 2^level for a merged octree block
-    std::vector<Vec3> centre;      ///< world space
-    std::vector<float> edge;       ///< block edge, metres
-    std::vector<Rgb> extinction;   ///< K_t, 1/m
-    std::vector<Rgb> albedo;       ///< Omega
-    std::vector<Rgb> emitted;      ///< emission / K_t: the radiance the zone emits (0 where K_t = 0)
+    std::vector<int32_t> medium;  ///< index into the media
+    std::vector<int32_t> voxel;   ///< linear index of the block's minimum-corner voxel in its medium
+    std::vector<int32_t> block;   ///< voxels per edge: 1, or 2^level for a merged octree block
+    std::vector<Vec3> centre;     ///< world space
+    std::vector<float> edge;      ///< block edge, metres
+    std::vector<Rgb> extinction;  ///< K_t, 1/m
+    std::vector<Rgb> albedo;      ///< Omega
+    std::vector<Rgb> emitted;     ///< emission / K_t: the radiance the zone emits (0 where K_t = 0)
 
     std::size_t size() const { return voxel.size(); }
     double volume(std::size_t k) const { return double(edge[k]) * edge[k] * edge[k]; }

@@ -19,8 +19,8 @@
 /// approximately for rows rendered from both ends; enforce_reciprocity() makes it exact.
 #pragma once
 
-#include "visibility/hemicube.h"
 #include "media/transmittance.h"
+#include "visibility/hemicube.h"
 
 #include <vector>
 
@@ -30,7 +30,10 @@ namespace radiosity {
 struct ZonalRow {
     std::vector<int32_t> col;
     std::vector<Channels> val;
-    void clear() { col.clear(); val.clear(); }
+    void clear() {
+        col.clear();
+        val.clear();
+    }
 };
 
 /// All rows in CSR. Grey media (K_t the same in all channels everywhere) give the same fraction in

@@ -4,8 +4,8 @@
 
 #include "common/parallel_rows.h"
 
-#include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -20,7 +20,8 @@ Vec3 r3_point(std::size_t n) {
     constexpr double g = 1.2207440846057594754;  // the plastic number: x^4 = x + 1
     constexpr double a1 = 1.0 / g, a2 = 1.0 / (g * g), a3 = 1.0 / (g * g * g);
     const double i = double(n);
-    return Vec3(float(std::fmod(0.5 + a1 * i, 1.0)), float(std::fmod(0.5 + a2 * i, 1.0)), float(std::fmod(0.5 + a3 * i, 1.0)));
+    return Vec3(float(std::fmod(0.5 + a1 * i, 1.0)), float(std::fmod(0.5 + a2 * i, 1.0)),
+                float(std::fmod(0.5 + a3 * i, 1.0)));
 }
 
 /// Distance from x along d to the plane of element j; 0 when x is not in front of it.
@@ -34,7 +35,9 @@ float distance_to_plane(const Elements& e, int32_t j, const Vec3& x, const Vec3&
 
 ZonalRowRenderer::ZonalRowRenderer(const Elements& elements, const Zones& zones, const MediumTracer& tracer,
                                    const ZonalFactorSettings& settings)
-    : elements_(elements), zones_(zones), tracer_(tracer),
+    : elements_(elements),
+      zones_(zones),
+      tracer_(tracer),
       surface_cube_(CubeWeights::make(settings.surface_resolution)),
       zone_cube_(CubeWeights::make(settings.zone_resolution)),
       sum_(elements.size() + zones.size(), glm::dvec3(0.0)) {}
@@ -102,26 +105,30 @@ ZonalMatrix compute_exchange_factors(const Elements& elements, const std::vector
         [&] { return ZonalRowRenderer(elements, zones, tracer, settings); });
     std::vector<ZonalRow> rows(unknowns);
     std::atomic<std::size_t> bytes{unknowns * sizeof(int64_t)};
-    const bool within_budget = detail::parallel_rows("form_factors", unknowns, 4, elements.size(), progress, [&](std::size_t x) {
-        renderers.local().row(static_cast<int32_t>(x), rows[x]);
-        return (bytes += rows[x].col.size() * bytes_per_nonzero) <= settings.budget_bytes;
-    });
+    const bool within_budget =
+        detail::parallel_rows("form_factors", unknowns, 4, elements.size(), progress, [&](std::size_t x) {
+            renderers.local().row(static_cast<int32_t>(x), rows[x]);
+            return (bytes += rows[x].col.size() * bytes_per_nonzero) <= settings.budget_bytes;
+        });
     if (!within_budget)
         throw BudgetError("exchange factors of " + std::to_string(elements.size()) + " elements and " +
-                         std::to_string(zones.size()) + " zones exceed the memory budget of " +
-                         std::to_string(settings.budget_bytes >> 20) +
-                         " MiB (they grow as zones squared): use larger voxels or raise the budget");
+                          std::to_string(zones.size()) + " zones exceed the memory budget of " +
+                          std::to_string(settings.budget_bytes >> 20) +
+                          " MiB (they grow as zones squared): use larger voxels or raise the budget");
 
     matrix.row_start.resize(unknowns + 1);
     matrix.row_start[0] = 0;
-    for (std::size_t x = 0; x < unknowns; ++x) matrix.row_start[x + 1] = matrix.row_start[x] + int64_t(rows[x].col.size());
+    for (std::size_t x = 0; x < unknowns; ++x)
+        matrix.row_start[x + 1] = matrix.row_start[x] + int64_t(rows[x].col.size());
     matrix.col.reserve(matrix.row_start[unknowns]);
     matrix.val.reserve(matrix.row_start[unknowns] * matrix.channels);
     for (ZonalRow& row : rows) {
         matrix.col.insert(matrix.col.end(), row.col.begin(), row.col.end());
         for (const Channels& v : row.val) {
-            if (grey) matrix.val.push_back(v.r);
-            else matrix.val.insert(matrix.val.end(), {v.r, v.g, v.b});
+            if (grey)
+                matrix.val.push_back(v.r);
+            else
+                matrix.val.insert(matrix.val.end(), {v.r, v.g, v.b});
         }
         row = ZonalRow();
     }

@@ -5,7 +5,6 @@
 
 #include <glm/common.hpp>
 
-
 namespace radiosity {
 namespace {
 
@@ -108,7 +107,8 @@ MediumGrids medium_grids(const Medium& medium, const std::vector<Rgb>& radiance,
                             J[f] = glm::max(value, Rgb(0.0));
                             sum += J[f];
                             fine[f] = std::size_t(x * s + i) +
-                                      std::size_t(g.dims[0]) * (std::size_t(y * s + j) + std::size_t(g.dims[1]) * (z * s + k));
+                                      std::size_t(g.dims[0]) *
+                                          (std::size_t(y * s + j) + std::size_t(g.dims[1]) * (z * s + k));
                         }
                 // Keep the zone's power: the mean of J over its cells is L_k (held where all clamped).
                 const Rgb L = radiance[v], mean = sum / double(J.size());

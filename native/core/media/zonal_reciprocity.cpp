@@ -91,7 +91,8 @@ void enforce_reciprocity(ZonalMatrix& R, const std::vector<Rgb>& w) {
         for (std::size_t x = 0; x < n; ++x) weight[ch][x] = w[x][ch];
         std::vector<double> target(n, 0.0);
         for (std::size_t x = 0; x < n; ++x)
-            for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k) target[x] += weight[ch][x] * R.val[k * c + ch];
+            for (int64_t k = R.row_start[x]; k < R.row_start[x + 1]; ++k)
+                target[x] += weight[ch][x] * R.val[k * c + ch];
         S[ch] = symmetric_exchange(R, T, weight[ch], static_cast<int>(ch));
         d[ch] = symmetric_scaling(S[ch], target);
     }

@@ -1,6 +1,7 @@
 /// @file zonal_solver.h
-/// @brief The coupled surface and zone system, the zonal method's surface and zone equations (Rushmeier & Torrance 1987) in radiance units, solved by
-/// Gauss-Seidel, Jacobi or progressive refinement with the surface solvers' stopping rule.
+/// @brief The coupled surface and zone system, the zonal method's surface and zone equations (Rushmeier & Torrance
+/// 1987) in radiance units, solved by Gauss-Seidel, Jacobi or progressive refinement with the surface solvers' stopping
+/// rule.
 ///
 /// For every unknown x (elements 0 .. n-1, then zones), with R the exchange factors of zonal.h:
 ///   L_x = E_x + a_x sum_y R_xy L_y
@@ -15,8 +16,8 @@
 /// channel by w_x = A_i for elements and 4 K_t,k V_k for zones (outgoing power over pi, per unit radiance).
 #pragma once
 
-#include "solve/solver.h"
 #include "media/zonal.h"
+#include "solve/solver.h"
 
 namespace radiosity {
 

@@ -5,8 +5,8 @@
 /// Shooting u from x adds a_y R_yx u to L_y and U_y, so this solves the system the sweeps solve.
 /// As in solver_progressive.cpp the residual is exactly sum_x w_x U_x . s_x with
 /// s_x = sum_y a_y w_y R_yx / w_x (per channel), known for every x because R^T is held.
-#include "solve/max_tree.h"
 #include "media/zonal_solver_detail.h"
+#include "solve/max_tree.h"
 
 #include <algorithm>
 

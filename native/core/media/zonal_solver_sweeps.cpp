@@ -33,14 +33,18 @@ double row_residual(const Terms& t, std::size_t x, const Gathered& g, const Rgb&
 /// (unnormalised) residual.
 double sweep(const Terms& t, const ZonalMatrix& R, bool jacobi, double omega, std::vector<Rgb>& L,
              std::vector<Rgb>& L_entry) {
-    if (jacobi) std::swap(L, L_entry);
-    else L_entry = L;
+    if (jacobi)
+        std::swap(L, L_entry);
+    else
+        L_entry = L;
     double residual = 0.0;
     for (std::size_t x = 0; x < t.size(); ++x) {
         const Gathered entry = gather(R, x, L_entry);
         residual += row_residual(t, x, entry, L_entry[x]);
-        if (jacobi) L[x] = solve_row(t, x, entry, L_entry[x]);
-        else L[x] += omega * (solve_row(t, x, gather(R, x, L), L[x]) - L[x]);
+        if (jacobi)
+            L[x] = solve_row(t, x, entry, L_entry[x]);
+        else
+            L[x] += omega * (solve_row(t, x, gather(R, x, L), L[x]) - L[x]);
     }
     return residual;
 }
@@ -52,14 +56,18 @@ SolveResult solve_sweeps(const Terms& t, const ZonalMatrix& R, const SolveSettin
     const bool jacobi = settings.method == Method::Jacobi;
     const double emitted = t.emitted_norm();
     // 0 = automatic: the surface solver's omega for the largest reflectance or albedo.
-    const double a_max = std::accumulate(t.a.begin(), t.a.end(), 0.0,
-                                         [](double m, const Rgb& a) { return std::max({m, a.r, a.g, a.b}); });
-    const double omega = settings.over_relaxation == 0.0 ? recommended_over_relaxation(a_max) : settings.over_relaxation;
+    const double a_max = std::accumulate(t.a.begin(), t.a.end(), 0.0, [](double m, const Rgb& a) {
+        return std::max({m, a.r, a.g, a.b});
+    });
+    const double omega =
+        settings.over_relaxation == 0.0 ? recommended_over_relaxation(a_max) : settings.over_relaxation;
     if (!(omega > 0.0 && omega < 2.0))
         throw InputError("over_relaxation must be 0 (automatic) or in (0, 2), got " + std::to_string(omega));
     return detail::iterate_sweeps(
         t.E, settings, jacobi ? "Jacobi" : "Gauss-Seidel", progress, element_count,
-        [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) { return sweep(t, R, jacobi, omega, L, L_entry) / emitted; },
+        [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) {
+            return sweep(t, R, jacobi, omega, L, L_entry) / emitted;
+        },
         [&](const std::vector<Rgb>& L) {
             double residual = 0.0;
             for (std::size_t x = 0; x < t.size(); ++x) residual += row_residual(t, x, gather(R, x, L), L[x]);

@@ -38,7 +38,8 @@ public:
         // Keep the zone's power: the mean over its voxels is L_k (held where all clamped).
         const Rgb mean = sum / (double(b) * b * b);
         for_each_voxel(c, b, [&](const std::array<int32_t, 3>&, std::size_t voxel) {
-            for (int ch = 0; ch < 3; ++ch) out[voxel][ch] = mean[ch] > 0.0 ? out[voxel][ch] * (Lk[ch] / mean[ch]) : Lk[ch];
+            for (int ch = 0; ch < 3; ++ch)
+                out[voxel][ch] = mean[ch] > 0.0 ? out[voxel][ch] * (Lk[ch] / mean[ch]) : Lk[ch];
         });
     }
 
@@ -104,8 +105,10 @@ std::vector<Rgb> voxel_radiance(const Medium& medium, std::size_t medium_index, 
     const BlockField field(medium, zones, zone_radiance, zone_of);
     for (std::size_t k = 0; k < zones.size(); ++k) {
         if (zones.medium[k] != static_cast<int32_t>(medium_index)) continue;
-        if (zones.block[k] == 1) out[zones.voxel[k]] = zone_radiance[k];  // a voxel: its zone's value, as before merging
-        else field.write(k, out);
+        if (zones.block[k] == 1)
+            out[zones.voxel[k]] = zone_radiance[k];  // a voxel: its zone's value, as before merging
+        else
+            field.write(k, out);
     }
     return out;
 }

@@ -4,8 +4,8 @@
 
 #include "common/parallel_rows.h"
 #include "common/stratified.h"
-#include "output/corner_approach.h"
 #include "geometry/weld.h"
+#include "output/corner_approach.h"
 #include "transport/lamp_points.h"
 #include "transport/near_field.h"
 #include "transport/world_light.h"
@@ -23,7 +23,6 @@
 namespace radiosity::detail {
 namespace {
 
-
 /// An element that emits: its corners and what direct light needs of it.
 struct Emitter {
     int32_t element;
@@ -37,8 +36,8 @@ struct Emitter {
 /// of the element hit): the light there is the seam vertices' own gathered light, so the point's
 /// light is linear in it, light = direct + max(indirect + sum of weight x field[slot], 0).
 struct SeamReads {
-    Rgb direct{0.0}, indirect{0.0};                    ///< direct light; the other rays' indirect light
-    std::vector<std::pair<int32_t, double>> slots;    ///< (slot 4 e + k of the field, weight), each slot once
+    Rgb direct{0.0}, indirect{0.0};                 ///< direct light; the other rays' indirect light
+    std::vector<std::pair<int32_t, double>> slots;  ///< (slot 4 e + k of the field, weight), each slot once
 };
 
 /// Each element's other side (-1: one-sided): add_back_sides appends the back sides in the order of
@@ -61,9 +60,15 @@ public:
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
              const hr::Visibility& visibility, float scene_size)
-        : elements_(elements), emitted_(emitted), radiance_(radiance), corner_field_(corner_field), lights_(lights),
-          world_(world), emitters_(emitters),
-          visibility_(visibility), scene_size_(scene_size),
+        : elements_(elements),
+          emitted_(emitted),
+          radiance_(radiance),
+          corner_field_(corner_field),
+          lights_(lights),
+          world_(world),
+          emitters_(emitters),
+          visibility_(visibility),
+          scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
 
@@ -120,8 +125,8 @@ private:
     /// more than half of them hit a back face nearer than `near`. `seam_share`: the share of rays
     /// that met another surface right at the point (closer than kSeam of the element hit). With
     /// `reads`, what those rays read of the field goes there as weights, the rest as its indirect.
-    bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out,
-                         float& seam_share, SeamReads* reads) const {
+    bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
+                         SeamReads* reads) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
@@ -172,7 +177,8 @@ private:
         if (elements_.is_triangle(std::size_t(h))) {
             for (const auto& [k, w] : {std::pair{0, 1.0 - u - v}, {1, u}, {2, v}}) slots.emplace_back(4 * h + k, w);
         } else {
-            for (const auto& [k, w] : {std::pair{0, (1.0 - u) * (1.0 - v)}, {1, u * (1.0 - v)}, {2, u * v}, {3, (1.0 - u) * v}})
+            for (const auto& [k, w] :
+                 {std::pair{0, (1.0 - u) * (1.0 - v)}, {1, u * (1.0 - v)}, {2, u * v}, {3, (1.0 - u) * v}})
                 slots.emplace_back(4 * h + k, w);
         }
     }
@@ -220,8 +226,9 @@ private:
                 const Vec3 d = points[k] - origin;
                 const float r2 = glm::dot(d, d);
                 const double kernel = r2 > 0.0f ? double(std::max(0.0f, glm::dot(normal, d)) *
-                                                         std::max(0.0f, -glm::dot(Vec3(source.normal), d))) / (r2 * r2)
-                                                 : 0.0;
+                                                         std::max(0.0f, -glm::dot(Vec3(source.normal), d))) /
+                                                      (r2 * r2)
+                                                : 0.0;
                 const bool seen_clear =
                     unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
                 clear += seen_clear;
@@ -278,7 +285,8 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
     for (std::size_t e = 0; e < elements.size(); ++e)
         for (int k = 0; k < elements.corner_count(e); ++k) {
             const std::size_t p = std::size_t(place[elements.corners[e][k]]);
-            if (first_element[p] < 0) first_element[p] = int32_t(e);
+            if (first_element[p] < 0)
+                first_element[p] = int32_t(e);
             else if (glm::dot(elements.normal[e], elements.normal[std::size_t(first_element[p])]) < 0.99f)
                 seam_place[p] = 1;
         }
@@ -315,11 +323,11 @@ void solve_seams(const Elements& elements, const std::vector<Rgb>& emitted, cons
 
 }  // namespace
 
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
-                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
-                          const FinalGatherSettings& settings, const int32_t* material, const int32_t* face_offsets,
-                          std::size_t face_count, float hard_edge_angle, CornerColors& colors,
-                          CornerColors& light_colors, const ProgressFn& progress) {
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
+                          const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
+                          const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
+                          float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
+                          const ProgressFn& progress) {
     GatherCounts counts;
     if (elements.size() == 0) return counts;
     const std::vector<Vec3> approach = corner_approach(elements, face_offsets, face_count);

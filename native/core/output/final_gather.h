@@ -59,12 +59,12 @@ struct GatherCounts {
 /// each element's own emission (without the lamps' and the world's first reflection), `radiance`
 /// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
-/// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather", one unit per
-/// gathered vertex, then "gather seams" for each later pass; throws Cancelled.
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted,
-                          const std::vector<Rgb>& radiance, const Lights& lights, const WorldLight& world,
-                          const FinalGatherSettings& settings, const int32_t* material, const int32_t* face_offsets,
-                          std::size_t face_count, float hard_edge_angle, CornerColors& colors,
-                          CornerColors& light_colors, const ProgressFn& progress);
+/// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
+/// one unit per gathered vertex, then "gather seams" for each later pass; throws Cancelled.
+GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
+                          const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
+                          const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
+                          float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
+                          const ProgressFn& progress);
 
 }  // namespace radiosity::detail

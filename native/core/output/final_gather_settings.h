@@ -15,8 +15,8 @@ namespace radiosity {
 /// Deterministic: the same bake twice gives bit-identical colours.
 struct FinalGatherSettings {
     bool enabled = false;
-    int rays = 1024;         ///< indirect rays per corner (rounded up to a square grid)
-    int shadow_rays = 64;    ///< shadow rays per corner, shared by the emitting elements it sees (at least 1 each)
+    int rays = 1024;       ///< indirect rays per corner (rounded up to a square grid)
+    int shadow_rays = 64;  ///< shadow rays per corner, shared by the emitting elements it sees (at least 1 each)
 };
 
 }  // namespace radiosity

@@ -43,7 +43,9 @@ namespace {
 class Slots {
 public:
     Slots(const Elements& elements, const int32_t* material, float hard_edge_angle)
-        : elements_(elements), material_(material), cos_hard_(std::cos(hard_edge_angle) - 1e-6f),
+        : elements_(elements),
+          material_(material),
+          cos_hard_(std::cos(hard_edge_angle) - 1e-6f),
           tolerance_(detail::weld_tolerance(elements.vertices)) {
         std::size_t welds = 0;
         weld_ = detail::weld_points(elements.vertices, tolerance_, welds);
@@ -92,7 +94,9 @@ public:
     const int32_t* incident_begin(int32_t w) const { return incident_.data() + incident_start_[w]; }
     const int32_t* incident_end(int32_t w) const { return incident_.data() + incident_start_[w + 1]; }
     /// Whether the edge from corner k to k + 1 lies on an intersection line.
-    bool cut_edge(std::size_t e, int k) const { return !elements_.cut_edges.empty() && ((elements_.cut_edges[e] >> k) & 1u); }
+    bool cut_edge(std::size_t e, int k) const {
+        return !elements_.cut_edges.empty() && ((elements_.cut_edges[e] >> k) & 1u);
+    }
     bool border(int32_t s) const { return border_[s]; }
 
     /// The slots of S: the compatible elements at this slot's vertex, with their corner there.
@@ -136,7 +140,8 @@ private:
         if (elements_.cut_edges.empty()) return;
         for (std::size_t e = 0; e < size(); ++e)
             for (int k = 0; k < written_corners(e); ++k)
-                if ((elements_.cut_edges[e] >> k) & 1u) cut_weld_[weld(e, k)] = cut_weld_[weld(e, (k + 1) % corner_count(e))] = true;
+                if ((elements_.cut_edges[e] >> k) & 1u)
+                    cut_weld_[weld(e, k)] = cut_weld_[weld(e, (k + 1) % corner_count(e))] = true;
     }
 
     /// Keeps, of set_[begin, end), the slots whose elements reach slot s's element by stepping
@@ -289,12 +294,16 @@ Rgb extrapolate(const Elements& elements, const Slots& slots, int32_t s, const s
 /// vertex is found by walking from one end of the open edge (used by one element) along the open
 /// edges of the other side to its far end; where the two sides' vertices interleave, nothing changes.
 void join_hanging_vertices(const Elements& elements, const Slots& slots, std::vector<Rgb>& colour) {
-    auto key = [](int32_t a, int32_t b) { return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b)); };
+    auto key = [](int32_t a, int32_t b) {
+        return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b));
+    };
     std::unordered_map<uint64_t, int> uses;
     for (std::size_t e = 0; e < slots.size(); ++e)
-        for (int k = 0; k < slots.written_corners(e); ++k) ++uses[key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))];
+        for (int k = 0; k < slots.written_corners(e); ++k)
+            ++uses[key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))];
     auto open = [&](std::size_t e, int k) {
-        return !slots.cut_edge(e, k) && uses.at(key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))) == 1;
+        return !slots.cut_edge(e, k) &&
+               uses.at(key(slots.weld(e, k), slots.weld(e, (k + 1) % slots.corner_count(e)))) == 1;
     };
     const double tolerance = slots.tolerance();
     std::vector<std::pair<int32_t, double>> chain;  // hanging welds and their place along the edge
@@ -345,9 +354,8 @@ void join_hanging_vertices(const Elements& elements, const Slots& slots, std::ve
 
 }  // namespace
 
-CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
-                                 const int32_t* material, float hard_edge_angle,
-                                 const std::vector<Rgb>* corner_light) {
+CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance, const int32_t* material,
+                                 float hard_edge_angle, const std::vector<Rgb>* corner_light) {
     const Slots slots(elements, material, hard_edge_angle);
     const std::size_t n = elements.size();
     std::vector<Rgb> value(4 * n, Rgb(0.0));
@@ -401,8 +409,10 @@ void replace_corners(const Elements& elements, const int32_t* material, float ha
             // Coplanar neighbours keep their own values: on a flat surface the light at a vertex
             // differs between faces only where it is discontinuous (a block's corner on a floor).
             for (const int32_t* t = slots.set_begin(s); t != slots.set_end(s); ++t)
-                if (known[*t] && (*t == s || elements.corners[Slots::element_of(*t)][Slots::corner_of(*t)] == elements.corners[e][k] ||
-                                  glm::dot(elements.normal[Slots::element_of(*t)], elements.normal[e]) < 1.0f - 1e-5f)) {
+                if (known[*t] &&
+                    (*t == s ||
+                     elements.corners[Slots::element_of(*t)][Slots::corner_of(*t)] == elements.corners[e][k] ||
+                     glm::dot(elements.normal[Slots::element_of(*t)], elements.normal[e]) < 1.0f - 1e-5f)) {
                     sum += slot_value[*t];
                     ++count;
                 }
@@ -414,7 +424,8 @@ void replace_corners(const Elements& elements, const int32_t* material, float ha
         for (int k = 0; k < slots.written_corners(e); ++k) vertex_slot[elements.corners[e][k]] = Slots::slot(e, k);
     for (std::size_t c = 0; c < elements.corner_vertex.size(); ++c) {
         const int32_t v = elements.corner_vertex[c];
-        if (v >= 0 && vertex_slot[v] >= 0 && known[vertex_slot[v]]) colors.input_corner[c] = colors.element_corner[vertex_slot[v]];
+        if (v >= 0 && vertex_slot[v] >= 0 && known[vertex_slot[v]])
+            colors.input_corner[c] = colors.element_corner[vertex_slot[v]];
     }
 }
 

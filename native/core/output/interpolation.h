@@ -1,5 +1,6 @@
 /// @file interpolation.h
-/// @brief Element radiances to vertex colours, as classic radiosity interpolates patch radiosities to vertices (averaged inside, extrapolated at borders).
+/// @brief Element radiances to vertex colours, as classic radiosity interpolates patch radiosities to vertices
+/// (averaged inside, extrapolated at borders).
 ///
 /// A vertex inside a smooth surface gets the mean of its adjacent elements; a vertex on the
 /// surface's border is extrapolated, B(a) = B1 + (B1 - B(e)), with B(e) the mean of the
@@ -18,9 +19,8 @@ namespace radiosity {
 /// lamps', evaluated there), added to the corners interpolated from `radiance` as its mean over
 /// the elements that share the corner's colour, so that a smooth surface's shared corners keep
 /// one value.
-CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance,
-                                 const int32_t* material, float hard_edge_angle,
-                                 const std::vector<Rgb>* corner_light = nullptr);
+CornerColors interpolate_corners(const Elements& elements, const std::vector<Rgb>& radiance, const int32_t* material,
+                                 float hard_edge_angle, const std::vector<Rgb>* corner_light = nullptr);
 
 /// Replaces the colours of the slots (4 per element, as `corner_light`) marked in `known`, and the
 /// input corners on them, by `slot_value` (clamped at zero): the final gather's values in place

@@ -38,7 +38,8 @@ void ReciprocalColumns::column(int32_t i, SparseColumn& out) {
     const double A_i = elements_.area[i];
     out.row = row_.col;
     out.val.resize(row_.val.size());
-    for (std::size_t k = 0; k < row_.val.size(); ++k) out.val[k] = double(row_.val[k]) * A_i / elements_.area[row_.col[k]];
+    for (std::size_t k = 0; k < row_.val.size(); ++k)
+        out.val[k] = double(row_.val[k]) * A_i / elements_.area[row_.col[k]];
 }
 
 }  // namespace radiosity

@@ -41,6 +41,7 @@ public:
     explicit StoredColumns(const SparseMatrix& F) : F_transposed_(transpose(F)) {}
     void column(int32_t i, SparseColumn& out) override;
     bool stored() const override { return true; }
+
 private:
     SparseMatrix F_transposed_;
 };
@@ -51,6 +52,7 @@ public:
     ReciprocalColumns(const Elements& elements, RowSource& rows) : elements_(elements), rows_(rows) {}
     void column(int32_t i, SparseColumn& out) override;
     bool stored() const override { return false; }
+
 private:
     const Elements& elements_;
     RowSource& rows_;

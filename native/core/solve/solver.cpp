@@ -44,16 +44,14 @@ void DivergenceGuard::check(double residual) {
     ++sweeps_;
     if (!std::isfinite(residual))
         throw NotConverged(std::string(method_) + " diverged: the residual is not finite after sweep " +
-                                 std::to_string(sweeps_) +
-                                 " (form-factor rows summing above 1 with reflectance near 1?)");
+                           std::to_string(sweeps_) + " (form-factor rows summing above 1 with reflectance near 1?)");
     if (first_ < 0.0) first_ = residual;
     growth_ = residual > previous_ && sweeps_ > 1 ? growth_ + 1 : 0;
     previous_ = residual;
     if (growth_ >= growth_limit && residual > first_)
         throw NotConverged(std::string(method_) + " diverged: the relative residual grew for " +
-                                 std::to_string(growth_) + " sweeps in a row to " + std::to_string(residual) +
-                                 " (first " + std::to_string(first_) +
-                                 "); form-factor rows summing above 1 with reflectance near 1?");
+                           std::to_string(growth_) + " sweeps in a row to " + std::to_string(residual) + " (first " +
+                           std::to_string(first_) + "); form-factor rows summing above 1 with reflectance near 1?");
 }
 
 }  // namespace detail
@@ -117,8 +115,8 @@ double relative_residual(const Elements& elements, RowSource& rows, const std::v
     for (std::size_t i = 0; i < elements.size(); ++i) {
         rows.row(static_cast<int32_t>(i), row);
         const detail::Gathered g = detail::gather(row, static_cast<int32_t>(i), radiance);
-        residual += detail::weighted_l1(elements.area[i],
-                                        elements.emission[i] + elements.reflectance[i] * g.sum - radiance[i]);
+        residual +=
+            detail::weighted_l1(elements.area[i], elements.emission[i] + elements.reflectance[i] * g.sum - radiance[i]);
     }
     const double emitted = detail::emitted_norm(elements);
     if (emitted == 0.0) return residual == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();

@@ -24,20 +24,21 @@ enum class Method { GaussSeidel, Jacobi, Progressive };
 
 struct SolveSettings {
     Method method = Method::GaussSeidel;
-    double tolerance = 1e-4;     ///< relative residual to stop at
-    int max_iterations = 1000;   ///< sweeps; for progressive refinement one sweep = n shots
-    bool ambient = false;        ///< progressive: add the ambient term of Cohen, Chen, Wallace & Greenberg 1988 to the reported preview
-    /// Gauss-Seidel only (surfaces and the zonal system): successive over-relaxation, L_i += omega (L_i^GS - L_i), omega in (0, 2).
-    /// 1 = plain Gauss-Seidel; 0 = automatic, recommended_over_relaxation(elements), the measured
+    double tolerance = 1e-4;    ///< relative residual to stop at
+    int max_iterations = 1000;  ///< sweeps; for progressive refinement one sweep = n shots
+    bool ambient =
+        false;  ///< progressive: add the ambient term of Cohen, Chen, Wallace & Greenberg 1988 to the reported preview
+    /// Gauss-Seidel only (surfaces and the zonal system): successive over-relaxation, L_i += omega (L_i^GS - L_i),
+    /// omega in (0, 2). 1 = plain Gauss-Seidel; 0 = automatic, recommended_over_relaxation(elements), the measured
     /// choice. Pays off where reflectance is near 1 (docs/stability.md).
     double over_relaxation = 1.0;
 };
 
 struct SolveResult {
-    std::vector<Rgb> radiance;          ///< per element
-    int iterations = 0;                 ///< sweeps (progressive: shots / n, rounded up)
-    std::size_t shots = 0;              ///< progressive refinement only
-    double residual = 0.0;              ///< final relative residual
+    std::vector<Rgb> radiance;             ///< per element
+    int iterations = 0;                    ///< sweeps (progressive: shots / n, rounded up)
+    std::size_t shots = 0;                 ///< progressive refinement only
+    double residual = 0.0;                 ///< final relative residual
     std::vector<double> residual_history;  ///< one entry per sweep (per n shots for progressive)
     bool converged = false;
     double seconds = 0.0;

@@ -10,9 +10,7 @@
 namespace radiosity::detail {
 
 /// One element's share of the solvers' norm: A_i (|v_r| + |v_g| + |v_b|).
-inline double weighted_l1(double area, const Rgb& v) {
-    return area * (std::abs(v.r) + std::abs(v.g) + std::abs(v.b));
-}
+inline double weighted_l1(double area, const Rgb& v) { return area * (std::abs(v.r) + std::abs(v.g) + std::abs(v.b)); }
 
 /// |E| in the solvers' norm (the emitted power, divided by pi).
 double emitted_norm(const Elements& elements);
@@ -36,6 +34,7 @@ class DivergenceGuard {
 public:
     explicit DivergenceGuard(const char* method) : method_(method) {}
     void check(double residual);
+
 private:
     static constexpr int growth_limit = 5;
     const char* method_;

@@ -60,8 +60,8 @@ double row_residual(const Elements& elements, std::size_t i, const Gathered& g, 
 
 /// Gauss-Seidel: on return L is the next iterate, L_entry the one it started from.
 /// Returns the residual of L_entry (unnormalised).
-double gauss_seidel_sweep(const Elements& elements, RowSource& rows, std::vector<Rgb>& L,
-                          std::vector<Rgb>& L_entry, SparseRow& row, double omega, RowProgress& tell) {
+double gauss_seidel_sweep(const Elements& elements, RowSource& rows, std::vector<Rgb>& L, std::vector<Rgb>& L_entry,
+                          SparseRow& row, double omega, RowProgress& tell) {
     L_entry = L;
     tell.start();
     double residual = 0.0;
@@ -111,7 +111,8 @@ SolveResult solve_sweeps(const Elements& elements, RowSource& rows, const SolveS
         elements.size(),
         [&](std::vector<Rgb>& L, std::vector<Rgb>& L_entry) {
             return (jacobi ? jacobi_sweep(elements, rows, L, L_entry, row, tell)
-                           : gauss_seidel_sweep(elements, rows, L, L_entry, row, omega, tell)) / emitted;
+                           : gauss_seidel_sweep(elements, rows, L, L_entry, row, omega, tell)) /
+                   emitted;
         },
         [&](const std::vector<Rgb>& L) { return relative_residual(elements, rows, L); });
 }

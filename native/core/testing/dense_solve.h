@@ -2,8 +2,8 @@
 /// @brief The solver tests' independent truth: a dense direct solve of the radiosity system.
 #pragma once
 
-#include "geometry/scene.h"
 #include "common/sparse.h"
+#include "geometry/scene.h"
 
 #include <vector>
 

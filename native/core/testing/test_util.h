@@ -20,7 +20,8 @@ struct SceneArrays {
 
     /// Adds a polygon with its own vertices (CCW seen from where its normal points).
     int32_t add_polygon(const std::vector<Vec3>& corners, const Rgb& rho, const Rgb& emitted, int32_t material_id = 0);
-    int32_t add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, const Rgb& rho, const Rgb& emitted = Rgb(0), int32_t material_id = 0);
+    int32_t add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, const Rgb& rho, const Rgb& emitted = Rgb(0),
+                     int32_t material_id = 0);
     SceneInput input() const;
 };
 

@@ -29,7 +29,8 @@ SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& s
     SparseMatrix matrix;
     matrix.row_start.resize(n + 1);
     matrix.row_start[0] = 0;
-    for (std::size_t i = 0; i < n; ++i) matrix.row_start[i + 1] = matrix.row_start[i] + static_cast<int64_t>(rows[i].col.size());
+    for (std::size_t i = 0; i < n; ++i)
+        matrix.row_start[i + 1] = matrix.row_start[i] + static_cast<int64_t>(rows[i].col.size());
     matrix.col.reserve(matrix.row_start[n]);
     matrix.val.reserve(matrix.row_start[n]);
     for (SparseRow& row : rows) {
@@ -41,7 +42,8 @@ SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& s
 }
 
 void StoredRows::row(int32_t i, SparseRow& out) {
-    if (i < 0 || static_cast<std::size_t>(i) >= matrix_.rows()) throw InputError("row " + std::to_string(i) + " out of range");
+    if (i < 0 || static_cast<std::size_t>(i) >= matrix_.rows())
+        throw InputError("row " + std::to_string(i) + " out of range");
     const auto begin = matrix_.row_start[i], end = matrix_.row_start[i + 1];
     out.col.assign(matrix_.col.begin() + begin, matrix_.col.begin() + end);
     out.val.assign(matrix_.val.begin() + begin, matrix_.val.begin() + end);
@@ -58,7 +60,8 @@ HemicubeRows::HemicubeRows(const Elements& elements, const RowSettings& settings
     : elements_(elements), renderer_(CubeWeights::make(settings.resolution), settings) {}
 
 void HemicubeRows::row(int32_t i, SparseRow& out) {
-    if (i < 0 || static_cast<std::size_t>(i) >= elements_.size()) throw InputError("row " + std::to_string(i) + " out of range");
+    if (i < 0 || static_cast<std::size_t>(i) >= elements_.size())
+        throw InputError("row " + std::to_string(i) + " out of range");
     renderer_.row(elements_, i, out);
 }
 

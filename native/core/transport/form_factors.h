@@ -17,13 +17,15 @@ public:
 /// Reports progress as phase "form_factors" (done = hemi-cubes finished); throws Cancelled.
 SparseMatrix compute_form_factors(const Elements& elements, int resolution, const ProgressFn& progress = {});
 /// As above, with rows computed as `settings` asks (orientation averaging, near-field correction).
-SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& settings, const ProgressFn& progress = {});
+SparseMatrix compute_form_factors(const Elements& elements, const RowSettings& settings,
+                                  const ProgressFn& progress = {});
 
 /// Rows read from a stored matrix.
 class StoredRows final : public RowSource {
 public:
     explicit StoredRows(const SparseMatrix& matrix) : matrix_(matrix) {}
     void row(int32_t i, SparseRow& out) override;
+
 private:
     const SparseMatrix& matrix_;
 };
@@ -34,6 +36,7 @@ public:
     HemicubeRows(const Elements& elements, int resolution);
     HemicubeRows(const Elements& elements, const RowSettings& settings);
     void row(int32_t i, SparseRow& out) override;
+
 private:
     const Elements& elements_;
     RowRenderer renderer_;

@@ -2,9 +2,9 @@
 /// @brief The lamps' irradiance at points, one shadow ray per lamp (lamp_points.h, lights.h).
 #include "transport/lamp_points.h"
 
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <limits>
 #include <stdexcept>

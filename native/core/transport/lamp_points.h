@@ -2,8 +2,8 @@
 /// @brief The lamps' irradiance at one point of a surface, exact: one shadow ray per lamp (internal).
 #pragma once
 
-#include "visibility/ray_tracer.h"
 #include "transport/lights.h"
+#include "visibility/ray_tracer.h"
 
 namespace radiosity::detail {
 

@@ -6,9 +6,9 @@
 /// its area. This conserves the lamp's power exactly and shadows come for free.
 #include "transport/lights.h"
 
-#include "visibility/hemicube.h"
 #include "common/report_progress.h"
 #include "transport/sun_raster.h"
+#include "visibility/hemicube.h"
 
 #include <glm/geometric.hpp>
 
@@ -27,13 +27,13 @@ float spot_profile(const PointLight& light, const Vec3& direction_from_light) {
 
 namespace {
 
-void add_point_light(const Elements& elements, const PointLight& light, Hemicube& cube,
-                     std::vector<Rgb>& irradiance) {
+void add_point_light(const Elements& elements, const PointLight& light, Hemicube& cube, std::vector<Rgb>& irradiance) {
     cube.render_sphere(elements, light.position, -1);
     const std::vector<float>& solid_angle = cube.weights().solid_angle;
     std::vector<float> weight(solid_angle);
     if (light.cos_half_angle > -1.0f)
-        for (std::size_t cell = 0; cell < weight.size(); ++cell) weight[cell] *= spot_profile(light, cube.cell_direction(cell));
+        for (std::size_t cell = 0; cell < weight.size(); ++cell)
+            weight[cell] *= spot_profile(light, cube.cell_direction(cell));
     SparseRow flux;
     cube.accumulate(weight, flux);
     for (std::size_t k = 0; k < flux.col.size(); ++k) {

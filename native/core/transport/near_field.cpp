@@ -26,7 +26,6 @@ int element_corners(const Elements& e, int32_t i, DVec3* out) {
     return count;
 }
 
-
 /// Gauss-Legendre nodes and weights on [0, 1], s = 1..4 (beyond that composite rules: see sub_points).
 struct GaussRule {
     std::array<double, 4> node, weight;
@@ -59,9 +58,12 @@ void sub_points(const Elements& e, int32_t i, int s, Visit visit) {
             for (int a = 0; a < q; ++a)
                 for (int b = 0; b < q; ++b) {
                     const double x = (ca + rule.node[a]) / cells, y = (cb + rule.node[b]) / cells;
-                    const DVec3 point = (1 - x) * (1 - y) * p[0] + x * (1 - y) * p[1] + x * y * p[2] + (1 - x) * y * p[3];
-                    const DVec3 dx = (1 - y) * (p[1] - p[0]) + y * (p[2] - p[3]), dy = (1 - x) * (p[3] - p[0]) + x * (p[2] - p[1]);
-                    visit(point, glm::length(glm::cross(dx, dy)) * rule.weight[a] * rule.weight[b] / double(cells * cells));
+                    const DVec3 point =
+                        (1 - x) * (1 - y) * p[0] + x * (1 - y) * p[1] + x * y * p[2] + (1 - x) * y * p[3];
+                    const DVec3 dx = (1 - y) * (p[1] - p[0]) + y * (p[2] - p[3]),
+                                dy = (1 - x) * (p[3] - p[0]) + x * (p[2] - p[1]);
+                    visit(point,
+                          glm::length(glm::cross(dx, dy)) * rule.weight[a] * rule.weight[b] / double(cells * cells));
                 }
 }
 

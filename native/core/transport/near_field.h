@@ -11,8 +11,8 @@
 /// it is good at: occlusion (the visible fraction) and everything far away.
 #pragma once
 
-#include "geometry/scene.h"
 #include "common/sparse.h"
+#include "geometry/scene.h"
 
 #include <glm/vec3.hpp>
 

@@ -10,7 +10,8 @@ namespace radiosity {
 
 RowRenderer::RowRenderer(std::shared_ptr<const CubeWeights> weights, const RowSettings& settings)
     : hemicube_(std::move(weights)), settings_(settings) {
-    if (settings.rotations < 1) throw InputError("hemi-cube rotations must be >= 1, got " + std::to_string(settings.rotations));
+    if (settings.rotations < 1)
+        throw InputError("hemi-cube rotations must be >= 1, got " + std::to_string(settings.rotations));
     if (settings.near_field.enabled && (settings.near_field.sub_points < 1 || !(settings.near_field.distance >= 0.0f)))
         throw InputError("near field: sub_points must be >= 1 and distance >= 0");
 }
@@ -34,7 +35,8 @@ void RowRenderer::fill_pinholes(SparseRow& row) {
                     if (count > best_count) best = id, best_count = count;
                 }
                 const auto at = std::lower_bound(row.col.begin(), row.col.end(), best);
-                row.val[static_cast<std::size_t>(at - row.col.begin())] += weight[cell];  // best is in the row: it was seen
+                row.val[static_cast<std::size_t>(at - row.col.begin())] +=
+                    weight[cell];  // best is in the row: it was seen
             }
     };
     scan(0, n);

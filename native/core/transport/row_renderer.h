@@ -3,8 +3,8 @@
 /// corrections against its known errors (orientation averaging against aliasing, near-field factors).
 #pragma once
 
-#include "visibility/hemicube.h"
 #include "transport/near_field.h"
+#include "visibility/hemicube.h"
 
 namespace radiosity {
 

@@ -2,11 +2,11 @@
 /// @brief Small emitters' direct light on every element (small_emitters.h).
 #include "transport/small_emitters.h"
 
-#include "visibility/ray_tracer.h"
 #include "common/parallel_rows.h"
-#include "transport/near_field.h"
-#include "visibility/shadow_ray.h"
 #include "common/stratified.h"
+#include "transport/near_field.h"
+#include "visibility/ray_tracer.h"
+#include "visibility/shadow_ray.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -73,16 +73,16 @@ std::vector<Rgb> small_emitter_light(const Elements& elements, const std::vector
                 const Vec3 d = b - a;
                 const float r2 = glm::dot(d, d);
                 if (!(r2 > 0.0f)) continue;
-                const double kernel = double(std::max(0.0f, glm::dot(nj, d)) * std::max(0.0f, -glm::dot(ni, d))) /
-                                      (double(r2) * r2);
+                const double kernel =
+                    double(std::max(0.0f, glm::dot(nj, d)) * std::max(0.0f, -glm::dot(ni, d))) / (double(r2) * r2);
                 if (!(kernel > 0.0)) continue;
                 total += kernel;
                 if (unhidden(visibility, elements, a, b, ni, scene_size)) visible += kernel;
             }
             // Every ray pair behind one of the planes (a grazing pair): judge by the centres.
-            const double share = total > 0.0 ? visible / total
-                                             : double(unhidden(visibility, elements, cj + lift * nj, ci + lift * ni, ni,
-                                                               scene_size));
+            const double share =
+                total > 0.0 ? visible / total
+                            : double(unhidden(visibility, elements, cj + lift * nj, ci + lift * ni, ni, scene_size));
             sum += emitted[s] * (share * flux / double(elements.area[i]));
         }
         incoming[i] = sum;

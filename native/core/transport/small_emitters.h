@@ -16,8 +16,8 @@
 /// this path; the caller bounds their number.
 #pragma once
 
-#include "geometry/scene.h"
 #include "common/types.h"
+#include "geometry/scene.h"
 
 #include <vector>
 

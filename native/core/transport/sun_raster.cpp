@@ -32,7 +32,11 @@ std::array<Vec3, 3> frame_along(const Vec3& d) {
 class Grid {
 public:
     Grid(float x0, float y0, float cell, int columns, int rows)
-        : x0_(x0), y0_(y0), cell_(cell), columns_(columns), rows_(rows),
+        : x0_(x0),
+          y0_(y0),
+          cell_(cell),
+          columns_(columns),
+          rows_(rows),
           depth_(std::size_t(columns) * rows, std::numeric_limits<float>::infinity()),
           item_(std::size_t(columns) * rows, -1) {}
 
@@ -43,7 +47,10 @@ public:
     void triangle(Projected a, Projected b, Projected c, int32_t id) {
         float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
         if (area == 0.0f) return;
-        if (area < 0.0f) { std::swap(b, c); area = -area; }
+        if (area < 0.0f) {
+            std::swap(b, c);
+            area = -area;
+        }
         const int c0 = std::max(0, int(std::floor((std::min({a.x, b.x, c.x}) - x0_) / cell_ - 0.5f)));
         const int c1 = std::min(columns_ - 1, int(std::ceil((std::max({a.x, b.x, c.x}) - x0_) / cell_ - 0.5f)));
         const int r0 = std::max(0, int(std::floor((std::min({a.y, b.y, c.y}) - y0_) / cell_ - 0.5f)));
@@ -99,7 +106,8 @@ void add_sun_light(const Elements& elements, const SunLight& sun, int resolution
     }
     const float cell = std::max(x_max - x_min, y_max - y_min) / resolution;
     if (!(cell > 0.0f)) return;
-    const int columns = std::max(1, int(std::ceil((x_max - x_min) / cell))), rows = std::max(1, int(std::ceil((y_max - y_min) / cell)));
+    const int columns = std::max(1, int(std::ceil((x_max - x_min) / cell))),
+              rows = std::max(1, int(std::ceil((y_max - y_min) / cell)));
     Grid grid(x_min, y_min, cell, columns, rows);
     grid.covered.assign(elements.size(), 0);
     for (std::size_t e = 0; e < elements.size(); ++e) {

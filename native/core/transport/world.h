@@ -54,7 +54,7 @@ std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& wo
 
 /// The world's irradiance at points on `surfaces`, each facing its unit normal
 /// (`world.point_samples` rays from each point, seeded by its index).
-std::vector<Rgb> world_irradiance_at(const Elements& surfaces, const WorldLight& world,
-                                     const std::vector<Vec3>& points, const std::vector<Vec3>& normals);
+std::vector<Rgb> world_irradiance_at(const Elements& surfaces, const WorldLight& world, const std::vector<Vec3>& points,
+                                     const std::vector<Vec3>& normals);
 
 }  // namespace radiosity

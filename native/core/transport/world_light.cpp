@@ -4,12 +4,12 @@
 #include "transport/world_light.h"
 
 #include "common/parallel_rows.h"
-#include "visibility/shadow_ray.h"
 #include "common/stratified.h"
+#include "visibility/shadow_ray.h"
 
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -121,16 +121,16 @@ WorldSampler::WorldSampler(const WorldLight& world) : world_(world), empty_(worl
 glm::dvec3 WorldSampler::map_direction(double a, double b) const {
     const int W = world_.width, H = world_.height;
     // The row, then the pixel in it; what is left of each number places the point in the pixel.
-    const std::size_t j = std::min(std::size_t(H - 1),
-                                   std::size_t(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), a) - row_cdf_.begin()));
+    const std::size_t j = std::min(
+        std::size_t(H - 1), std::size_t(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), a) - row_cdf_.begin()));
     const double row_low = j > 0 ? row_cdf_[j - 1] : 0.0;
     const double within_row = std::clamp((a - row_low) / std::max(row_cdf_[j] - row_low, 1e-300), 0.0, 1.0);
     const auto row_begin = pixel_cdf_.begin() + std::ptrdiff_t(j * std::size_t(W));
-    const std::size_t i = std::min(std::size_t(W - 1),
-                                   std::size_t(std::upper_bound(row_begin, row_begin + W, b) - row_begin));
+    const std::size_t i =
+        std::min(std::size_t(W - 1), std::size_t(std::upper_bound(row_begin, row_begin + W, b) - row_begin));
     const double pixel_low = i > 0 ? row_begin[std::ptrdiff_t(i) - 1] : 0.0;
-    const double within_pixel = std::clamp((b - pixel_low) / std::max(row_begin[std::ptrdiff_t(i)] - pixel_low, 1e-300),
-                                           0.0, 1.0);
+    const double within_pixel =
+        std::clamp((b - pixel_low) / std::max(row_begin[std::ptrdiff_t(i)] - pixel_low, 1e-300), 0.0, 1.0);
     const double u = (double(i) + within_pixel) / W, v = (double(j) + within_row) / H;
     const double phi = M_PI - 2.0 * M_PI * u, theta = M_PI * (1.0 - v);
     return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
@@ -177,9 +177,8 @@ void WorldSampler::add(const hr::Visibility& visibility, const Vec3& origin, con
     sum += world_.radiance[pixel_of(world_, w)] * (cosine / density);
 }
 
-std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world,
-                                        const hr::Visibility& visibility, float scene_size,
-                                        const ProgressFn& progress) {
+std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world, const hr::Visibility& visibility,
+                                        float scene_size, const ProgressFn& progress) {
     std::vector<Rgb> light(4 * mesh.size(), Rgb(0.0));
     const WorldSampler sampler(world);
     if (sampler.empty()) return light;
@@ -238,16 +237,16 @@ std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& wo
         const int cos_grid = (sampler.cos_grid() + grid - 1) / grid, map_grid = (sampler.map_grid() + grid - 1) / grid;
         Rgb sum(0.0);
         for (int k = 0; k < grid * grid; ++k)
-            sum += sampler.irradiance(visibility, points[std::size_t(k)] + lift * n, n, detail::mix_seed(seed, uint32_t(k)),
-                                      cos_grid, map_grid);
+            sum += sampler.irradiance(visibility, points[std::size_t(k)] + lift * n, n,
+                                      detail::mix_seed(seed, uint32_t(k)), cos_grid, map_grid);
         irradiance[e] = sum / double(grid * grid);
         return true;
     });
     return irradiance;
 }
 
-std::vector<Rgb> world_irradiance_at(const Elements& surfaces, const WorldLight& world,
-                                     const std::vector<Vec3>& points, const std::vector<Vec3>& normals) {
+std::vector<Rgb> world_irradiance_at(const Elements& surfaces, const WorldLight& world, const std::vector<Vec3>& points,
+                                     const std::vector<Vec3>& normals) {
     world.check();
     if (points.size() != normals.size()) throw InputError("world_irradiance_at: one normal per point");
     std::vector<Rgb> irradiance(points.size(), Rgb(0.0));

@@ -3,8 +3,8 @@
 /// equirectangular map and the cosine (internal; world.h).
 #pragma once
 
-#include "visibility/ray_tracer.h"
 #include "transport/world.h"
+#include "visibility/ray_tracer.h"
 
 #include <vector>
 
@@ -42,8 +42,8 @@ private:
     double map_pdf(const glm::dvec3& direction) const;
     /// Adds one sample's contribution (unit direction `w` at `cosine` to the normal; `cos_count`
     /// and `map_count` samples of each strategy) to `sum`.
-    void add(const hr::Visibility& visibility, const Vec3& origin, const glm::dvec3& w, double cosine,
-             int cos_count, int map_count, Rgb& sum) const;
+    void add(const hr::Visibility& visibility, const Vec3& origin, const glm::dvec3& w, double cosine, int cos_count,
+             int map_count, Rgb& sum) const;
 
     const WorldLight& world_;
     bool empty_ = true;
@@ -57,8 +57,7 @@ private:
 /// 4th of a triangle zero), a hair inside the element: computed once per vertex and polygon (the
 /// faces of one polygon around a vertex share it), with WorldLight::point_samples rays seeded by
 /// the vertex. Zero for elements that reflect nothing. Progress phase "output"; throws Cancelled.
-std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world,
-                                        const hr::Visibility& visibility, float scene_size,
-                                        const ProgressFn& progress);
+std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world, const hr::Visibility& visibility,
+                                        float scene_size, const ProgressFn& progress);
 
 }  // namespace radiosity::detail

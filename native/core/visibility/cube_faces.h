@@ -32,8 +32,8 @@ inline constexpr std::array<Face, 6> faces{{
 
 /// Cell rows and columns of the faces of one render.
 struct Layout {
-    int resolution = 0;   ///< columns per face
-    int face_count = 0;   ///< 5 (hemisphere) or 6 (sphere)
+    int resolution = 0;  ///< columns per face
+    int face_count = 0;  ///< 5 (hemisphere) or 6 (sphere)
     bool hemisphere = true;
 
     int rows(int face) const { return hemisphere && face > 0 ? resolution / 2 : resolution; }

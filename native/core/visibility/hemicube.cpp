@@ -12,8 +12,8 @@
 /// shared edges neither leave gaps nor count twice. Depth: along d, 1/t = (n . d) / (n . P) is
 /// linear in the face coordinates, so it is compared exactly per pixel centre.
 
-#include "visibility/cube_faces.h"
 #include "visibility/hemicube.h"
+#include "visibility/cube_faces.h"
 
 #include <glm/geometric.hpp>
 
@@ -30,14 +30,19 @@ constexpr uint16_t kBelow = 1u << (2 * kForms);
 
 /// Form index and sign bit of the expression c1 * p[a] + c2 * p[b] > 0 (c1, c2 = +-1).
 uint16_t form_bit(int a, float c1, int b, float c2) {
-    if (a > b) { std::swap(a, b); std::swap(c1, c2); }
-    const int pair = a == 0 ? (b == 1 ? 0 : 1) : 2;   // (0,1), (0,2), (1,2)
+    if (a > b) {
+        std::swap(a, b);
+        std::swap(c1, c2);
+    }
+    const int pair = a == 0 ? (b == 1 ? 0 : 1) : 2;     // (0,1), (0,2), (1,2)
     const int form = 2 * pair + (c1 * c2 > 0 ? 1 : 0);  // p[a] - p[b] or p[a] + p[b]
     return static_cast<uint16_t>(1u << (2 * form + (c1 > 0 ? 0 : 1)));
 }
 
 uint16_t outcode(const Vec3& p) {
-    auto bits = [](float form, unsigned k) { return (form > 0.0f ? 1u << (2 * k) : 0u) | (form < 0.0f ? 2u << (2 * k) : 0u); };
+    auto bits = [](float form, unsigned k) {
+        return (form > 0.0f ? 1u << (2 * k) : 0u) | (form < 0.0f ? 2u << (2 * k) : 0u);
+    };
     return static_cast<uint16_t>(bits(p.x - p.y, 0) | bits(p.x + p.y, 1) | bits(p.x - p.z, 2) | bits(p.x + p.z, 3) |
                                  bits(p.y - p.z, 4) | bits(p.y + p.z, 5) | (p.z <= 0.0f ? kBelow : 0u));
 }
@@ -47,7 +52,8 @@ uint16_t face_reject_mask(int f, bool half) {
     const cube::Face& face = cube::faces[f];
     const int x = face.axis[0], y = face.axis[1], z = face.axis[2];
     const float sx = face.sign[0], sy = face.sign[1], sz = face.sign[2];
-    uint16_t mask = form_bit(x, sx, z, -sz) | form_bit(x, -sx, z, -sz) | form_bit(y, sy, z, -sz) | form_bit(y, -sy, z, -sz);
+    uint16_t mask =
+        form_bit(x, sx, z, -sz) | form_bit(x, -sx, z, -sz) | form_bit(y, sy, z, -sz) | form_bit(y, -sy, z, -sz);
     return half ? static_cast<uint16_t>(mask | kBelow) : mask;
 }
 
@@ -89,12 +95,12 @@ Edge make_edge(const Vec3& coefficient) {
 struct Hemicube::Impl {
     std::shared_ptr<const CubeWeights> weights;
     cube::Layout layout;
-    std::array<Vec3, 3> basis{};           ///< world directions of local u, v, w
-    std::vector<float> inverse_depth;      ///< per cell, 0 = nothing drawn
-    std::vector<int32_t> item;             ///< per cell
-    std::vector<Vec3> local;               ///< per element vertex, relative to the eye, local frame
-    std::vector<uint16_t> code;            ///< per element vertex outcode
-    std::vector<double> sum;               ///< accumulate(): per element
+    std::array<Vec3, 3> basis{};       ///< world directions of local u, v, w
+    std::vector<float> inverse_depth;  ///< per cell, 0 = nothing drawn
+    std::vector<int32_t> item;         ///< per cell
+    std::vector<Vec3> local;           ///< per element vertex, relative to the eye, local frame
+    std::vector<uint16_t> code;        ///< per element vertex outcode
+    std::vector<double> sum;           ///< accumulate(): per element
     std::vector<int32_t> touched;
 
     void render(const Elements& elements, const Vec3& origin, const std::array<Vec3, 3>& frame, bool hemisphere,
@@ -120,7 +126,8 @@ void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const 
     for (std::size_t v = 0; v < vertex_count; ++v) {
         const float dx = elements.vertices[v].x - origin.x, dy = elements.vertices[v].y - origin.y,
                     dz = elements.vertices[v].z - origin.z;
-        local[v] = Vec3(frame[0].x * dx + frame[0].y * dy + frame[0].z * dz, frame[1].x * dx + frame[1].y * dy + frame[1].z * dz,
+        local[v] = Vec3(frame[0].x * dx + frame[0].y * dy + frame[0].z * dz,
+                        frame[1].x * dx + frame[1].y * dy + frame[1].z * dz,
                         frame[2].x * dx + frame[2].y * dy + frame[2].z * dz);
         code[v] = outcode(local[v]);
     }
@@ -138,10 +145,13 @@ void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const 
         for (int f = 0; f < layout.face_count; ++f)
             if (!(common & reject[f])) face_set |= static_cast<uint8_t>(1u << f);
         if (!face_set) continue;
-        const Vec3 eye_local(glm::dot(frame[0], elements.centre[i] - origin), glm::dot(frame[1], elements.centre[i] - origin),
+        const Vec3 eye_local(glm::dot(frame[0], elements.centre[i] - origin),
+                             glm::dot(frame[1], elements.centre[i] - origin),
                              glm::dot(frame[2], elements.centre[i] - origin));
-        if (triangle) draw<3>(elements, e, face_set, eye_local);
-        else draw<4>(elements, e, face_set, eye_local);
+        if (triangle)
+            draw<3>(elements, e, face_set, eye_local);
+        else
+            draw<4>(elements, e, face_set, eye_local);
     }
 }
 
@@ -187,8 +197,10 @@ void Hemicube::Impl::rasterise(const std::array<Vec3, K>& corner, const std::arr
     float x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
     auto include = [&](const Vec3& p) {
         const float inv = 1.0f / p.z;
-        x_lo = std::min(x_lo, p.x * inv); x_hi = std::max(x_hi, p.x * inv);
-        y_lo = std::min(y_lo, p.y * inv); y_hi = std::max(y_hi, p.y * inv);
+        x_lo = std::min(x_lo, p.x * inv);
+        x_hi = std::max(x_hi, p.x * inv);
+        y_lo = std::min(y_lo, p.y * inv);
+        y_hi = std::max(y_hi, p.y * inv);
     };
     if (in_front) {
         for (int k = 0; k < K; ++k) include(q[k]);
@@ -257,7 +269,8 @@ void Hemicube::render_hemisphere(const Elements& elements, const Vec3& origin, c
                                  float angle) {
     const std::array<Vec3, 3> frame = basis_around(glm::normalize(normal));
     const float c = std::cos(angle), s = std::sin(angle);
-    impl_->render(elements, origin, {c * frame[0] + s * frame[1], c * frame[1] - s * frame[0], frame[2]}, true, exclude);
+    impl_->render(elements, origin, {c * frame[0] + s * frame[1], c * frame[1] - s * frame[0], frame[2]}, true,
+                  exclude);
 }
 
 void Hemicube::render_sphere(const Elements& elements, const Vec3& origin, int32_t exclude) {
@@ -311,9 +324,11 @@ Vec3 Hemicube::cell_direction(std::size_t cell) const {
     int f = m.layout.face_count - 1;
     while (f > 0 && cell < m.layout.offset(f)) --f;
     const std::size_t within = cell - m.layout.offset(f);
-    const int row = static_cast<int>(within / m.layout.resolution), col = static_cast<int>(within % m.layout.resolution);
+    const int row = static_cast<int>(within / m.layout.resolution),
+              col = static_cast<int>(within % m.layout.resolution);
     const float h = m.layout.cell_size();
-    const Vec3 local = cube::to_local(cube::faces[f], Vec3(-1.0f + (col + 0.5f) * h, m.layout.y_min(f) + (row + 0.5f) * h, 1.0f));
+    const Vec3 local =
+        cube::to_local(cube::faces[f], Vec3(-1.0f + (col + 0.5f) * h, m.layout.y_min(f) + (row + 0.5f) * h, 1.0f));
     return glm::normalize(m.basis[0] * local.x + m.basis[1] * local.y + m.basis[2] * local.z);
 }
 
@@ -324,7 +339,8 @@ float Hemicube::cell_distance(std::size_t cell) const {
     int f = m.layout.face_count - 1;
     while (f > 0 && cell < m.layout.offset(f)) --f;
     const std::size_t within = cell - m.layout.offset(f);
-    const int row = static_cast<int>(within / m.layout.resolution), col = static_cast<int>(within % m.layout.resolution);
+    const int row = static_cast<int>(within / m.layout.resolution),
+              col = static_cast<int>(within % m.layout.resolution);
     const float h = m.layout.cell_size();
     const float x = -1.0f + (col + 0.5f) * h, y = m.layout.y_min(f) + (row + 0.5f) * h;
     // The z-buffer holds 1/t for the point t (x, y, 1) in face coordinates.

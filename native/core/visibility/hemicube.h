@@ -7,8 +7,8 @@
 /// Summing the cells' weights per element gives one row of form factors.
 #pragma once
 
-#include "geometry/scene.h"
 #include "common/sparse.h"
+#include "geometry/scene.h"
 
 #include <memory>
 #include <vector>
@@ -18,9 +18,9 @@ namespace radiosity {
 /// Cell weights for one resolution, computed once and shared read-only between threads.
 /// Cells are indexed as the item buffer is: face-major, then row, then column.
 struct CubeWeights {
-    int resolution = 0;               ///< cells per full face edge, even
-    std::vector<float> form_factor;   ///< hemi-cube: exact delta form factors, sum 1 (to 1e-6)
-    std::vector<float> solid_angle;   ///< full cube: cell solid angles, sum 4 pi
+    int resolution = 0;              ///< cells per full face edge, even
+    std::vector<float> form_factor;  ///< hemi-cube: exact delta form factors, sum 1 (to 1e-6)
+    std::vector<float> solid_angle;  ///< full cube: cell solid angles, sum 4 pi
     static std::shared_ptr<const CubeWeights> make(int resolution);
 };
 
@@ -38,7 +38,8 @@ public:
     void render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude);
     /// As above, with the hemi-cube turned by `angle` radians about the normal (for averaging
     /// several orientations against aliasing).
-    void render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude, float angle);
+    void render_hemisphere(const Elements& elements, const Vec3& origin, const Vec3& normal, int32_t exclude,
+                           float angle);
 
     /// Renders `elements` seen from `origin` in all directions (six full faces).
     void render_sphere(const Elements& elements, const Vec3& origin, int32_t exclude);

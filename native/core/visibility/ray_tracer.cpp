@@ -2,11 +2,11 @@
 /// @brief The patches as one Embree quad geometry (triangles as quads with a repeated corner).
 ///
 /// Embree is opened privately (shared_library.h: dlopen with RTLD_LOCAL) and called through the
-/// addresses dlsym gives, never linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc* calls
-/// would bind to the Embree loaded first, whatever version it is (an Embree 3 call on Embree 4
-/// misses every ray: hierarchical bakes lose their shadows without an error). dlsym on our own
-/// handle returns our Embree's functions; Embree exports nothing but its rtc* API and does not
-/// call it itself, so nothing inside it binds to the other Embree either.
+/// addresses dlsym gives, never linked: in Blender 4 and later, which load Embree 4 themselves, a linked module's rtc*
+/// calls would bind to the Embree loaded first, whatever version it is (an Embree 3 call on Embree 4 misses every ray:
+/// hierarchical bakes lose their shadows without an error). dlsym on our own handle returns our Embree's functions;
+/// Embree exports nothing but its rtc* API and does not call it itself, so nothing inside it binds to the other Embree
+/// either.
 #include "visibility/ray_tracer.h"
 
 #include "visibility/shared_library.h"
@@ -47,7 +47,7 @@ Embree load_embree() {
     // A package ships its own Embree beside the module (tools/packaging); opened by path, it is
     // that copy even when the host already loaded a library of the same soname.
     for (const std::string& name : {shared_library::own_folder() + RADIOSITY_EMBREE_SONAME,
-                                     std::string(RADIOSITY_EMBREE_SONAME), std::string(RADIOSITY_EMBREE_PATH)}) {
+                                    std::string(RADIOSITY_EMBREE_SONAME), std::string(RADIOSITY_EMBREE_PATH)}) {
         if ((library = shared_library::open(name, errors))) break;
     }
     if (!library) throw std::runtime_error("Embree: cannot load " RADIOSITY_EMBREE_SONAME ": " + errors);
@@ -108,13 +108,14 @@ Visibility::Visibility(const std::vector<Vec3>& vertices, const std::vector<std:
     e.setSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // watertight: rays along a shared edge must not slip through
     RTCGeometry quads = e.newGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
     auto* position = static_cast<float*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                 3 * sizeof(float), vertices.size()));
+                                                                3 * sizeof(float), vertices.size()));
     for (std::size_t v = 0; v < vertices.size(); ++v)
         for (int a = 0; a < 3; ++a) position[3 * v + a] = vertices[v][a];
     auto* index = static_cast<uint32_t*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
-                                                                 4 * sizeof(uint32_t), corners.size()));
+                                                                4 * sizeof(uint32_t), corners.size()));
     for (std::size_t p = 0; p < corners.size(); ++p)
-        for (int k = 0; k < 4; ++k) index[4 * p + k] = static_cast<uint32_t>(corners[p][k] >= 0 ? corners[p][k] : corners[p][2]);
+        for (int k = 0; k < 4; ++k)
+            index[4 * p + k] = static_cast<uint32_t>(corners[p][k] >= 0 ? corners[p][k] : corners[p][2]);
     e.commitGeometry(quads);
     e.attachGeometry(scene_, quads);
     e.releaseGeometry(quads);

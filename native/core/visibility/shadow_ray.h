@@ -3,8 +3,8 @@
 /// final gather and the small emitters' direct light).
 #pragma once
 
-#include "visibility/ray_tracer.h"
 #include "geometry/scene.h"
+#include "visibility/ray_tracer.h"
 
 #include <array>
 #include <vector>

@@ -1,7 +1,7 @@
 /// @file vdb_read.cpp
 /// @brief Reading an OpenVDB grid onto an axis-aligned world grid by box-averaged trilinear samples.
-#include "radiosity/vdb_io.h"
 #include "common/types.h"
+#include "radiosity/vdb_io.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -112,7 +112,7 @@ WorldGrid read_world_grid(const std::string& path, const std::string& name, cons
         });
     } else {
         throw FileError("grid '" + name + "' in '" + path + "' is " + base->valueType() +
-                                 "; only float and vec3s grids can be read");
+                        "; only float and vec3s grids can be read");
     }
     return out;
 }

@@ -1,7 +1,7 @@
 /// @file vdb_voxelize.cpp
 /// @brief The inside of a closed mesh as a per-cell volume fraction, through OpenVDB's level sets.
-#include "radiosity/vdb_io.h"
 #include "common/types.h"
+#include "radiosity/vdb_io.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -22,7 +22,8 @@ WorldGrid voxelize_mesh_interior(const float* positions, std::size_t vertex_coun
     for (std::size_t v = 0; v < vertex_count; ++v) {
         points[v] = openvdb::Vec3s(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
         for (int a = 0; a < 3; ++a) {
-            if (!std::isfinite(positions[3 * v + a])) throw InputError("vertex " + std::to_string(v) + " is not finite");
+            if (!std::isfinite(positions[3 * v + a]))
+                throw InputError("vertex " + std::to_string(v) + " is not finite");
             lo[a] = std::min(lo[a], double(positions[3 * v + a]));
             hi[a] = std::max(hi[a], double(positions[3 * v + a]));
         }
@@ -54,7 +55,9 @@ WorldGrid voxelize_mesh_interior(const float* positions, std::size_t vertex_coun
         for (int32_t y = 0; y < out.dims[1] * samples; ++y)
             for (int32_t x = 0; x < out.dims[0] * samples; ++x)
                 if (accessor.getValue(openvdb::Coord(x, y, z)) < 0.0f)
-                    out.values[x / samples + std::size_t(out.dims[0]) * (y / samples + std::size_t(out.dims[1]) * (z / samples))] += per_sample;
+                    out.values[x / samples +
+                               std::size_t(out.dims[0]) * (y / samples + std::size_t(out.dims[1]) * (z / samples))] +=
+                        per_sample;
     return out;
 }
 

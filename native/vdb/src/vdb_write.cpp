@@ -1,7 +1,7 @@
 /// @file vdb_write.cpp
 /// @brief Writing world grids as sparse OpenVDB grids (zero cells stay inactive).
-#include "radiosity/vdb_io.h"
 #include "common/types.h"
+#include "radiosity/vdb_io.h"
 
 #include <openvdb/openvdb.h>
 
@@ -28,7 +28,8 @@ typename GridType::Ptr to_vdb(const WorldGrid& grid, const std::string& name, Va
             for (int32_t x = 0; x < grid.dims[0]; ++x) {
                 const std::size_t cell = x + std::size_t(grid.dims[0]) * (y + std::size_t(grid.dims[1]) * z);
                 const auto v = value(cell);
-                if (v != openvdb::zeroVal<typename GridType::ValueType>()) accessor.setValue(openvdb::Coord(x, y, z), v);
+                if (v != openvdb::zeroVal<typename GridType::ValueType>())
+                    accessor.setValue(openvdb::Coord(x, y, z), v);
             }
     return out;
 }

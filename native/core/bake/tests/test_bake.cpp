@@ -85,9 +85,10 @@ TEST(Bake, OnDemandProgressiveFurnaceIsLimitedByHemicubeReciprocity) {
         EXPECT_LT(max_relative_error(r.solve.radiance, truth), 1e-5);
         double furnace = 0.0;
         for (const Rgb& L : r.solve.radiance) furnace = std::max(furnace, std::abs(L.g * (1.0 - rho.g) / E.g - 1.0));
-        std::printf("on-demand progressive furnace element_size %.1f: %zu elements, %zu shots, "
-                    "max deviation from E/(1-rho) %.2e (known limitation)\n",
-                    element_size, e.size(), r.solve.shots, furnace);
+        std::printf(
+            "on-demand progressive furnace element_size %.1f: %zu elements, %zu shots, "
+            "max deviation from E/(1-rho) %.2e (known limitation)\n",
+            element_size, e.size(), r.solve.shots, furnace);
     }
 }
 
@@ -104,8 +105,8 @@ TEST(Bake, OpposedSquaresMatchTheAreaFormFactor) {
             area += e.area[i];
         }
     const double mean = power / area;
-    std::printf("opposed squares: %zu elements, mean receiver radiance %.6f, expected %.6f, error %.3f%%\n",
-                e.size(), mean, rho * F_area * L_e, 100.0 * (mean / (rho * F_area * L_e) - 1.0));
+    std::printf("opposed squares: %zu elements, mean receiver radiance %.6f, expected %.6f, error %.3f%%\n", e.size(),
+                mean, rho * F_area * L_e, 100.0 * (mean / (rho * F_area * L_e) - 1.0));
     EXPECT_NEAR(mean / (rho * F_area * L_e), 1.0, 0.01);
     // Symmetric setting: the receiver's four polygon corners get one value.
     for (int c = 5; c < 8; ++c) EXPECT_NEAR(r.colors.input_corner[c].g, r.colors.input_corner[4].g, 1e-6);
@@ -128,8 +129,9 @@ TEST(Bake, SolversMatchDenseDirectSolveOfTheHemicubeMatrix) {
         ASSERT_TRUE(r.converged);
         const double error = max_relative_error(r.radiance, truth_F);
         EXPECT_LT(error, 1e-5) << "method " << int(m);
-        std::printf("cornell %zu elements, stored, method %d: %d sweeps, %zu shots, residual %.2e, error vs direct F %.2e\n",
-                    e.size(), int(m), r.iterations, r.shots, r.residual, error);
+        std::printf(
+            "cornell %zu elements, stored, method %d: %d sweeps, %zu shots, residual %.2e, error vs direct F %.2e\n",
+            e.size(), int(m), r.iterations, r.shots, r.residual, error);
     }
     // Rows one at a time (the on-demand path): progressive refinement shoots by reciprocity and
     // solves with G instead of F.
@@ -168,8 +170,8 @@ TEST(Bake, TinyBudgetTakesTheOnDemandPathAndConverges) {
                     on_demand.build.elements.size(), on_demand.solve.iterations, on_demand.solve.residual);
     }
     // Progressive refinement holds F and F^T, so it needs twice the bound.
-    const BakeResult r = bake(box.input(), settings_for(Method::Progressive, 0.3f, 32, 1e-8,
-                                                        2 * matrix_bytes_bound(2 * 94, 32) - 1));
+    const BakeResult r =
+        bake(box.input(), settings_for(Method::Progressive, 0.3f, 32, 1e-8, 2 * matrix_bytes_bound(2 * 94, 32) - 1));
     ASSERT_EQ(r.build.elements.size(), 2 * 94u);  // the emitting walls' back sides too
     EXPECT_FALSE(r.matrix_stored);
     EXPECT_TRUE(r.solve.converged);

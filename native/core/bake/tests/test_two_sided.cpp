@@ -23,7 +23,7 @@ constexpr double kFactor = 0.19982;  ///< unit squares one apart (Howell, C-11)
 test::SceneArrays emitter_back_over_receiver(double emitter_rho) {
     test::SceneArrays s;
     s.add_quad({0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, Rgb(emitter_rho), Rgb(kEmitted), 1);  // normal +z
-    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(kRho), Rgb(0), 0);                 // normal +z
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(kRho), Rgb(0), 0);                // normal +z
     return s;
 }
 
@@ -118,10 +118,11 @@ TEST(TwoSided, BackSideLightsWhatItFacesInTheUniformBake) {
         const Elements& e = r.build.elements;
         const double mean = front_mean(e, r.solve.radiance, 1);
         const Power p = power(e, r.solve.radiance);
-        std::printf("uniform method %d stored %d: receiver %.6f (exact %.6f, %+.3f%%), emitted %.6f W, absorbed %.6f W "
-                    "(exact %.6f)\n",
-                    int(s.solve.method), int(r.matrix_stored), mean, expected, 100.0 * (mean / expected - 1.0),
-                    p.emitted, p.absorbed, M_PI * (1.0 - kRho) * kFactor * kEmitted);
+        std::printf(
+            "uniform method %d stored %d: receiver %.6f (exact %.6f, %+.3f%%), emitted %.6f W, absorbed %.6f W "
+            "(exact %.6f)\n",
+            int(s.solve.method), int(r.matrix_stored), mean, expected, 100.0 * (mean / expected - 1.0), p.emitted,
+            p.absorbed, M_PI * (1.0 - kRho) * kFactor * kEmitted);
         EXPECT_NEAR(mean / expected, 1.0, 0.01);
         EXPECT_NEAR(p.emitted / (2.0 * M_PI * kEmitted), 1.0, 1e-6);
         EXPECT_NEAR(p.absorbed / (M_PI * (1.0 - kRho) * kFactor * kEmitted), 1.0, 0.01);
@@ -149,7 +150,7 @@ TEST(TwoSided, FrontOnlyEmittersBlockNoLight) {
     // the gathered corners; turned towards the receiver it adds its own light.
     const Rgb rho(kRho);
     test::SceneArrays without;
-    without.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho);                     // receiver, +z
+    without.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho);                         // receiver, +z
     without.add_quad({0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}, Rgb(0.0), Rgb(kEmitted), 1);  // emitter, -z
     test::SceneArrays with = without;
     with.add_quad({0.25f, 0.25f, 1}, {0.75f, 0.25f, 1}, {0.75f, 0.75f, 1}, {0.25f, 0.75f, 1}, Rgb(0.0), Rgb(5.0), 2);
@@ -194,9 +195,8 @@ TEST(TwoSided, WrittenColoursAreTheFront) {
     const test::SceneArrays scene = emitter_back_over_receiver(kRho);
     const BakeResult u = bake(scene.input(), uniform(Method::GaussSeidel));
     const HierarchyResult h = bake_hierarchical(scene.input(), hierarchical());
-    for (const auto& [e, radiance, corners] :
-         {std::tie(u.build.elements, u.solve.radiance, u.colors.input_corner),
-          std::tie(h.output, h.output_radiance, h.colors.input_corner)}) {
+    for (const auto& [e, radiance, corners] : {std::tie(u.build.elements, u.solve.radiance, u.colors.input_corner),
+                                               std::tie(h.output, h.output_radiance, h.colors.input_corner)}) {
         double back = 0.0;
         for (std::size_t i = 0; i < e.size(); ++i)
             if (e.is_back(i)) back = std::max(back, radiance[i].g);
@@ -219,7 +219,8 @@ TEST(TwoSided, LampsLightTheBackSide) {
     h.lights = lights;
     const BakeResult a = bake(scene.input(), u);
     const HierarchyResult b = bake_hierarchical(scene.input(), h);
-    for (const auto& [e, radiance] : {std::tie(a.build.elements, a.solve.radiance), std::tie(b.output, b.output_radiance)}) {
+    for (const auto& [e, radiance] :
+         {std::tie(a.build.elements, a.solve.radiance), std::tie(b.output, b.output_radiance)}) {
         // The square (1 m^2) reflects rho S / pi of radiance on one side: zero with one-sided emitters.
         double reflected = 0.0;
         for (std::size_t i = 0; i < e.size(); ++i) reflected += e.area[i] * (radiance[i].g - kEmitted);
@@ -252,8 +253,8 @@ TEST(TwoSided, ClosedRoomAbsorbsWhatBothSidesEmit) {
         const BakeResult r = bake(scene.input(), s);
         ASSERT_TRUE(r.solve.converged);
         const Power p = power(r.build.elements, r.solve.radiance);
-        std::printf("closed room, method %d: emitted %.6f W (exact %.6f), absorbed %.6f W\n", int(m), p.emitted, emitted,
-                    p.absorbed);
+        std::printf("closed room, method %d: emitted %.6f W (exact %.6f), absorbed %.6f W\n", int(m), p.emitted,
+                    emitted, p.absorbed);
         EXPECT_NEAR(p.emitted / emitted, 1.0, 1e-6);
         EXPECT_NEAR(p.absorbed / p.emitted, 1.0, 0.01);
     }
@@ -303,8 +304,10 @@ TEST(TwoSided, PanelCloseUnderTheCeilingLeaksNoLightPastItsOutline) {
         const double means[2] = {room_mean(a.build.elements, a.solve.radiance), room_mean(b.output, b.output_radiance)};
         std::printf("panel at %.2f: room mean %.5f (uniform), %.5f (hierarchical)\n", x0, means[0], means[1]);
         for (int k = 0; k < 2; ++k) {
-            if (x0 == 0.75f) on_grid[k] = means[k];
-            else EXPECT_NEAR(means[k] / on_grid[k], 1.0, 0.01) << k;
+            if (x0 == 0.75f)
+                on_grid[k] = means[k];
+            else
+                EXPECT_NEAR(means[k] / on_grid[k], 1.0, 0.01) << k;
         }
     }
 }

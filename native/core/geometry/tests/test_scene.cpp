@@ -4,8 +4,8 @@
 #include "geometry/scene.h"
 #include "testing/test_util.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <limits>
@@ -128,20 +128,25 @@ TEST(Scene, AShortArmIsNotCutAsFinelyAsTheLongOne) {
 TEST(Scene, DegeneratePolygonsAreReportedNotUsed) {
     SceneArrays s;
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));                 // 0: fine
-    s.add_quad({0, 0, 0}, {1, 0, 0}, {nan, 1, 0}, {0, 1, 0}, Rgb(0.5));               // 1: NaN
-    s.add_polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, Rgb(0.5), Rgb(0));                // 2: collinear
-    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, inf, 0}, {0, 1, 0}, Rgb(0.5));               // 3: infinite
-    s.add_polygon({{0, 0, 0}, {1, 0, 0}}, Rgb(0.5), Rgb(0));                           // 4: two corners
-    s.add_polygon({{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, Rgb(0.5), Rgb(0));                // 5: fine
-    s.corner_vertices.back() = 1000;                                                    //    ... now a bad index
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));    // 0: fine
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {nan, 1, 0}, {0, 1, 0}, Rgb(0.5));  // 1: NaN
+    s.add_polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, Rgb(0.5), Rgb(0));  // 2: collinear
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, inf, 0}, {0, 1, 0}, Rgb(0.5));  // 3: infinite
+    s.add_polygon({{0, 0, 0}, {1, 0, 0}}, Rgb(0.5), Rgb(0));             // 4: two corners
+    s.add_polygon({{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, Rgb(0.5), Rgb(0));  // 5: fine
+    s.corner_vertices.back() = 1000;                                     //    ... now a bad index
     const BuildResult r = build_elements(s.input(), 0.0f);
     ASSERT_EQ(r.skipped.size(), 5u);
-    EXPECT_EQ(r.skipped[0].polygon, 1); EXPECT_EQ(r.skipped[0].defect, Defect::NonFinite);
-    EXPECT_EQ(r.skipped[1].polygon, 2); EXPECT_EQ(r.skipped[1].defect, Defect::ZeroArea);
-    EXPECT_EQ(r.skipped[2].polygon, 3); EXPECT_EQ(r.skipped[2].defect, Defect::NonFinite);
-    EXPECT_EQ(r.skipped[3].polygon, 4); EXPECT_EQ(r.skipped[3].defect, Defect::TooFewCorners);
-    EXPECT_EQ(r.skipped[4].polygon, 5); EXPECT_EQ(r.skipped[4].defect, Defect::BadIndex);
+    EXPECT_EQ(r.skipped[0].polygon, 1);
+    EXPECT_EQ(r.skipped[0].defect, Defect::NonFinite);
+    EXPECT_EQ(r.skipped[1].polygon, 2);
+    EXPECT_EQ(r.skipped[1].defect, Defect::ZeroArea);
+    EXPECT_EQ(r.skipped[2].polygon, 3);
+    EXPECT_EQ(r.skipped[2].defect, Defect::NonFinite);
+    EXPECT_EQ(r.skipped[3].polygon, 4);
+    EXPECT_EQ(r.skipped[3].defect, Defect::TooFewCorners);
+    EXPECT_EQ(r.skipped[4].polygon, 5);
+    EXPECT_EQ(r.skipped[4].defect, Defect::BadIndex);
     ASSERT_EQ(r.elements.size(), 1u);
     EXPECT_EQ(r.elements.polygon[0], 0);
     for (std::size_t c = 4; c < s.corner_vertices.size(); ++c) EXPECT_EQ(r.elements.corner_vertex[c], -1);

@@ -1,9 +1,10 @@
 /// @file test_stability_geometry.cpp
-/// @brief Thin slivers and coplanar overlapping faces: measured errors (intersections: test_stability_intersections.cpp).
+/// @brief Thin slivers and coplanar overlapping faces: measured errors (intersections:
+/// test_stability_intersections.cpp).
 
 #include "bake/bake.h"
-#include "transport/near_field.h"
 #include "testing/test_util.h"
+#include "transport/near_field.h"
 
 #include <gtest/gtest.h>
 
@@ -29,7 +30,8 @@ TEST(Slivers, AspectSplitFollowsTheLightAlongASliver) {
     // each element's area factor to the emitter (Lambert, 8 x 8 Gauss points; no occluders).
     test::SceneArrays scene;
     scene.add_quad({0.0f, 0.1f, 0.3f}, {0.0f, 0.3f, 0.3f}, {0.2f, 0.3f, 0.3f}, {0.2f, 0.1f, 0.3f}, Rgb(0), Rgb(1.0));
-    scene.add_quad({0.0f, 0.195f, 0.0f}, {1.0f, 0.195f, 0.0f}, {1.0f, 0.205f, 0.0f}, {0.0f, 0.205f, 0.0f}, Rgb(0.5), Rgb(0));
+    scene.add_quad({0.0f, 0.195f, 0.0f}, {1.0f, 0.195f, 0.0f}, {1.0f, 0.205f, 0.0f}, {0.0f, 0.205f, 0.0f}, Rgb(0.5),
+                   Rgb(0));
     for (float aspect : {0.0f, 4.0f}) {
         BakeSettings s = settings(0.0f);
         s.limits.max_aspect = aspect;
@@ -37,8 +39,10 @@ TEST(Slivers, AspectSplitFollowsTheLightAlongASliver) {
         const double worst = test::worst_direct_light_error(r, 0.5);
         std::printf("sliver, max aspect %.0f: %zu elements, worst element error %.3f of the peak radiance\n", aspect,
                     test::front_count(r.build.elements) - 1, worst);
-        if (aspect == 0.0f) EXPECT_GT(worst, 0.5);  // measured
-        else EXPECT_LT(worst, 0.05);                // measured
+        if (aspect == 0.0f)
+            EXPECT_GT(worst, 0.5);  // measured
+        else
+            EXPECT_LT(worst, 0.05);  // measured
     }
 }
 
@@ -60,7 +64,8 @@ TEST(Coplanar, OverlappingFacesResolveTheTieOneWay) {
     const double overlap = factor(0.5f, 1.0f), red_only = factor(0.0f, 0.5f), green_only = factor(1.0f, 1.5f);
     const Rgb L = r.solve.radiance[2] / 0.5;  // = sum_j F_2j E_j
     const double red_share = (L.r - red_only) / overlap, green_share = (L.g - green_only) / overlap;
-    std::printf("coplanar overlap seen as red %.4f, green %.4f (sum %.4f)\n", red_share, green_share, red_share + green_share);
-    EXPECT_NEAR(red_share + green_share, 1.0, 0.01);  // the overlap is counted once
+    std::printf("coplanar overlap seen as red %.4f, green %.4f (sum %.4f)\n", red_share, green_share,
+                red_share + green_share);
+    EXPECT_NEAR(red_share + green_share, 1.0, 0.01);    // the overlap is counted once
     EXPECT_LT(std::min(red_share, green_share), 0.01);  // and given to one face, not speckled
 }

@@ -25,7 +25,8 @@ BakeSettings settings(float element_size) {
 
 void expect_finite(const BakeResult& r) {
     for (const Rgb& L : r.solve.radiance) ASSERT_TRUE(std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b));
-    for (const Rgb& L : r.colors.input_corner) ASSERT_TRUE(std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b));
+    for (const Rgb& L : r.colors.input_corner)
+        ASSERT_TRUE(std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b));
 }
 
 }  // namespace
@@ -40,7 +41,8 @@ TEST(DegenerateInput, FurnaceHoldsFromMicrometresToThousandsOfKilometres) {
         ASSERT_EQ(r.build.elements.size(), 2 * 94u) << size;  // the emitting walls' back sides, facing out
         expect_finite(r);
         double worst = 0.0;
-        for (const Rgb& L : test::fronts(r.build.elements, r.solve.radiance)) worst = std::max(worst, std::abs(L.g / 2.0 - 1.0));
+        for (const Rgb& L : test::fronts(r.build.elements, r.solve.radiance))
+            worst = std::max(worst, std::abs(L.g / 2.0 - 1.0));
         std::printf("furnace box of %g m: worst deviation %.1e\n", double(size), worst);
         EXPECT_LT(worst, 1e-4) << size;
     }
@@ -49,7 +51,8 @@ TEST(DegenerateInput, FurnaceHoldsFromMicrometresToThousandsOfKilometres) {
 TEST(DegenerateInput, BadPolygonsAreSkippedAndNamedTheRestBakes) {
     test::SceneArrays scene = test::closed_box(Vec3(1.0f), Rgb(0.5), Rgb(1.0));
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    scene.add_quad({0.2f, 0.2f, 0.5f}, {0.4f, 0.2f, 0.5f}, {0.4f, 0.2f, 0.5f}, {0.2f, 0.2f, 0.5f}, Rgb(0.5));  // zero area
+    scene.add_quad({0.2f, 0.2f, 0.5f}, {0.4f, 0.2f, 0.5f}, {0.4f, 0.2f, 0.5f}, {0.2f, 0.2f, 0.5f},
+                   Rgb(0.5));  // zero area
     scene.add_polygon({{0.2f, 0.2f, 0.5f}, {nan, 0.2f, 0.5f}, {0.2f, 0.4f, 0.5f}}, Rgb(0.5), Rgb(0));
     scene.add_polygon({{0.2f, 0.2f, 0.5f}, {inf, 0.2f, 0.5f}, {0.2f, 0.4f, 0.5f}}, Rgb(0.5), Rgb(0));
     scene.add_polygon({{0.2f, 0.2f, 0.5f}, {0.3f, 0.2f, 0.5f}, {0.4f, 0.2f, 0.5f}}, Rgb(0.5), Rgb(0));  // collinear

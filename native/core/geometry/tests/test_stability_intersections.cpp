@@ -4,8 +4,8 @@
 /// come out bit for bit as without the cut.
 
 #include "bake/bake.h"
-#include "transport/near_field.h"
 #include "testing/test_util.h"
+#include "transport/near_field.h"
 
 #include <gtest/gtest.h>
 
@@ -25,8 +25,8 @@ constexpr double kFloorRho = 0.5, kLampRadiance = 10.0;
 /// its direct light, known exactly: rho E F to the lamp on the lit side, 0 beyond the wall.
 test::SceneArrays wall_through_floor() {
     test::SceneArrays scene;
-    scene.add_quad({-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(kFloorRho));                          // floor
-    scene.add_quad({0, 0, -0.5f}, {0, 0, 1.5f}, {0, 1, 1.5f}, {0, 1, -0.5f}, Rgb(0));                      // wall, faces -x
+    scene.add_quad({-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(kFloorRho));      // floor
+    scene.add_quad({0, 0, -0.5f}, {0, 0, 1.5f}, {0, 1, 1.5f}, {0, 1, -0.5f}, Rgb(0));  // wall, faces -x
     scene.add_quad({-0.7f, 0.3f, 1}, {-0.7f, 0.7f, 1}, {-0.3f, 0.7f, 1}, {-0.3f, 0.3f, 1}, Rgb(0), Rgb(kLampRadiance));
     return scene;
 }
@@ -38,9 +38,10 @@ double lit_floor_radiance(const Vec3& x) {
 }
 
 struct LeakMeasure {
-    int straddling = 0;        ///< floor elements with corners on both sides of the wall
-    double dark_strip = 0.0;   ///< brightest floor element reaching past the wall / lit mean
-    double dark_corner = 0.0;  ///< brightest corner colour on the dark side (x > 0, or x = 0 of a dark element) / lit mean
+    int straddling = 0;       ///< floor elements with corners on both sides of the wall
+    double dark_strip = 0.0;  ///< brightest floor element reaching past the wall / lit mean
+    double dark_corner =
+        0.0;  ///< brightest corner colour on the dark side (x > 0, or x = 0 of a dark element) / lit mean
     double lit_column = 0.0;   ///< worst error of the lit column nearest the wall / its centres' truth
     double lit_corner = 0.0;   ///< worst error of that column's corner colours on its wall side / their truth
     double open_corner = 0.0;  ///< the same at the floor's open edge x = -1, the wall's mirror image about the lamp
@@ -57,7 +58,8 @@ LeakMeasure measure(float element_size, bool cut) {
     LeakMeasure m;
     double lit = 0.0, lit_area = 0.0;
     for (std::size_t i = 0; i < e.size(); ++i)
-        if (e.polygon[i] == kFloor && e.centre[i].x < 0.0f) lit += e.area[i] * r.solve.radiance[i].g, lit_area += e.area[i];
+        if (e.polygon[i] == kFloor && e.centre[i].x < 0.0f)
+            lit += e.area[i] * r.solve.radiance[i].g, lit_area += e.area[i];
     const double lit_mean = lit / lit_area;
     auto x_range = [&](std::size_t i) {
         float x_min = 1e9f, x_max = -1e9f;
@@ -83,17 +85,22 @@ LeakMeasure measure(float element_size, bool cut) {
         for (int k = 0; k < 4; ++k) {
             const Vec3& x = e.vertices[e.corners[i][k]];
             const double colour = r.colors.element_corner[4 * i + k].g;
-            if (x.x > 0.0f || (x.x == 0.0f && e.centre[i].x > 0.0f)) m.dark_corner = std::max(m.dark_corner, colour / lit_mean);
+            if (x.x > 0.0f || (x.x == 0.0f && e.centre[i].x > 0.0f))
+                m.dark_corner = std::max(m.dark_corner, colour / lit_mean);
             if (x.x == near_wall && x_max == near_wall) {
                 const double truth = lit_floor_radiance(x);
                 m.lit_corner = std::max(m.lit_corner, std::abs(colour - truth) / truth);
             }
-            if (x.x == -1.0f) m.open_corner = std::max(m.open_corner, std::abs(colour - lit_floor_radiance(x)) / lit_floor_radiance(x));
+            if (x.x == -1.0f)
+                m.open_corner =
+                    std::max(m.open_corner, std::abs(colour - lit_floor_radiance(x)) / lit_floor_radiance(x));
         }
     }
-    std::printf("wall through floor, %.2f m elements, cut %s: %d straddling, dark strip %.4f and dark corners %.4f "
-                "of the lit mean; lit column error %.4f, lit corners on the wall %.4f (open edge %.4f)\n",
-                element_size, cut ? "on " : "off", m.straddling, m.dark_strip, m.dark_corner, m.lit_column, m.lit_corner, m.open_corner);
+    std::printf(
+        "wall through floor, %.2f m elements, cut %s: %d straddling, dark strip %.4f and dark corners %.4f "
+        "of the lit mean; lit column error %.4f, lit corners on the wall %.4f (open edge %.4f)\n",
+        element_size, cut ? "on " : "off", m.straddling, m.dark_strip, m.dark_corner, m.lit_column, m.lit_corner,
+        m.open_corner);
     return m;
 }
 
@@ -194,12 +201,14 @@ TEST(Leaks, ShortWallThroughAConcaveFloorCutsItWhereItPasses) {
             cross_min = std::min(cross_min, y), cross_max = std::max(cross_max, y);
         }
         const bool straddles = x_min < 0.5f - 1e-6f && x_max > 0.5f + 1e-6f;
-        EXPECT_FALSE(straddles && cross_max > 0.25f + 1e-6f && cross_min < 1.5f - 1e-6f) << "element " << i << " straddles the wall";
+        EXPECT_FALSE(straddles && cross_max > 0.25f + 1e-6f && cross_min < 1.5f - 1e-6f)
+            << "element " << i << " straddles the wall";
     }
     EXPECT_NEAR(floor_area, 3.0, 3e-6);  // the pieces tile the floor
     EXPECT_GT(cut_edges, 0);
     for (int32_t c = 0; c < scene.face_offsets.back(); ++c) {
         const int32_t v = scene.corner_vertices[c];
-        EXPECT_EQ(e.vertices[e.corner_vertex[c]], Vec3(scene.positions[3 * v], scene.positions[3 * v + 1], scene.positions[3 * v + 2]));
+        EXPECT_EQ(e.vertices[e.corner_vertex[c]],
+                  Vec3(scene.positions[3 * v], scene.positions[3 * v + 1], scene.positions[3 * v + 2]));
     }
 }

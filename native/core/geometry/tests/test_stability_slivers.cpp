@@ -4,12 +4,12 @@
 /// them into strips, and no colour cracks where strips meet an uncut neighbour.
 
 #include "bake/bake.h"
-#include "transport/near_field.h"
 #include "testing/test_util.h"
+#include "transport/near_field.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
-#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +45,8 @@ double hessian_bound(const glm::dvec2& lo, const glm::dvec2& hi) {
     for (double x = lo.x; x <= hi.x; x += 2e-3)
         for (double y = lo.y; y <= hi.y; y += 2e-3) {
             auto f = [&](double dx, double dy) { return truth_at({x + dx, y + dy, 0}); };
-            const double fxx = (f(h, 0) - 2 * f(0, 0) + f(-h, 0)) / (h * h), fyy = (f(0, h) - 2 * f(0, 0) + f(0, -h)) / (h * h);
+            const double fxx = (f(h, 0) - 2 * f(0, 0) + f(-h, 0)) / (h * h),
+                         fyy = (f(0, h) - 2 * f(0, 0) + f(0, -h)) / (h * h);
             const double fxy = (f(h, h) - f(h, -h) - f(-h, h) + f(-h, -h)) / (4 * h * h);
             worst = std::max(worst, std::sqrt(fxx * fxx + fyy * fyy + 2 * fxy * fxy));  // Frobenius >= spectral
         }
@@ -75,27 +76,32 @@ SliverMeasure measure(const test::SceneArrays& scene, float max_aspect, double h
     const std::size_t floor_end = test::front_count(e);
     m.elements = floor_end - 1;
     double peak = 0.0;
-    for (std::size_t i = 1; i < floor_end; ++i) peak = std::max(peak, kRho * kLamp * area_flux(e, int32_t(i), 0, 8) / e.area[i]);
+    for (std::size_t i = 1; i < floor_end; ++i)
+        peak = std::max(peak, kRho * kLamp * area_flux(e, int32_t(i), 0, 8) / e.area[i]);
     for (std::size_t i = 1; i < floor_end; ++i) {
         const int n = e.is_triangle(i) ? 3 : 4;
         double diameter = 0.0;
         for (int a = 0; a < n; ++a)
             for (int b = a + 1; b < n; ++b)
-                diameter = std::max(diameter, double(glm::length(e.vertices[e.corners[i][a]] - e.vertices[e.corners[i][b]])));
+                diameter =
+                    std::max(diameter, double(glm::length(e.vertices[e.corners[i][a]] - e.vertices[e.corners[i][b]])));
         const double truth = kRho * kLamp * area_flux(e, int32_t(i), 0, 8) / e.area[i];
         const double at_centre = truth_at(glm::dvec3(e.centre[i]));
-        const double bound = hessian * diameter * diameter / 24 + at_centre * 2.5 / (kResolution * std::sqrt(at_centre / (kRho * kLamp)));
+        const double bound = hessian * diameter * diameter / 24 +
+                             at_centre * 2.5 / (kResolution * std::sqrt(at_centre / (kRho * kLamp)));
         const double error = std::abs(r.solve.radiance[i].g - truth);
         m.element_error = std::max(m.element_error, error / peak);
         m.outside_bound = std::max(m.outside_bound, error / bound);
         for (int k = 0; k < n; ++k) {
             const double colour = r.colors.element_corner[4 * i + k].g;
-            m.corner_error = std::max(m.corner_error, std::abs(colour - truth_at(glm::dvec3(e.vertices[e.corners[i][k]]))) / peak);
+            m.corner_error =
+                std::max(m.corner_error, std::abs(colour - truth_at(glm::dvec3(e.vertices[e.corners[i][k]]))) / peak);
         }
     }
-    std::printf("%s, max aspect %.0f: %zu elements, worst element error %.4f of the peak (%.2f of its bound), "
-                "worst corner colour %.4f\n",
-                name, max_aspect, m.elements, m.element_error, m.outside_bound, m.corner_error);
+    std::printf(
+        "%s, max aspect %.0f: %zu elements, worst element error %.4f of the peak (%.2f of its bound), "
+        "worst corner colour %.4f\n",
+        name, max_aspect, m.elements, m.element_error, m.outside_bound, m.corner_error);
     return m;
 }
 
@@ -116,7 +122,8 @@ double t_vertex_crack(const BakeResult& r, int& t_vertices) {
                     const double t = glm::dot(v - a, b - a) / glm::dot(b - a, b - a);
                     if (!(t > 1e-6 && t < 1 - 1e-6) || glm::length(v - a - t * (b - a)) > 1e-6) continue;
                     ++t_vertices;
-                    const double along = (1 - t) * r.colors.element_corner[4 * j + l].g + t * r.colors.element_corner[4 * j + (l + 1) % m].g;
+                    const double along = (1 - t) * r.colors.element_corner[4 * j + l].g +
+                                         t * r.colors.element_corner[4 * j + (l + 1) % m].g;
                     worst = std::max(worst, std::abs(r.colors.element_corner[4 * i + k].g - along) / peak);
                 }
             }
@@ -144,7 +151,8 @@ TEST(SliverTriangles, CapIsCutAtItsAltitudeWithoutColourCracks) {
     // A cap (an angle near 180 degrees, 1 m long, 2 cm high) beside a well-shaped triangle sharing
     // its long edge. The cap's strips put vertices inside the neighbour's edge (T-vertices): their
     // colours must follow the neighbour's edge, or the copies' mesh shows a crack along it.
-    const auto scene = lamp_over({{{0, 0.2f, 0}, {1, 0.2f, 0}, {0.3f, 0.22f, 0}}, {{0, 0.2f, 0}, {0.5f, -0.3f, 0}, {1, 0.2f, 0}}});
+    const auto scene =
+        lamp_over({{{0, 0.2f, 0}, {1, 0.2f, 0}, {0.3f, 0.22f, 0}}, {{0, 0.2f, 0}, {0.5f, -0.3f, 0}, {1, 0.2f, 0}}});
     const double hessian = hessian_bound({0, 0.2}, {1, 0.22});
     BakeSettings s;
     s.resolution = kResolution;
@@ -156,8 +164,9 @@ TEST(SliverTriangles, CapIsCutAtItsAltitudeWithoutColourCracks) {
         for (std::size_t i = 0; i < e.size(); ++i) cap_elements += e.polygon[i] == 1;
         int t_vertices = 0;
         const double crack = t_vertex_crack(r, t_vertices);
-        std::printf("cap beside a triangle, max aspect %.0f: %d cap elements, %d T-vertices, worst crack %.2g of the peak\n",
-                    aspect, cap_elements, t_vertices, crack);
+        std::printf(
+            "cap beside a triangle, max aspect %.0f: %d cap elements, %d T-vertices, worst crack %.2g of the peak\n",
+            aspect, cap_elements, t_vertices, crack);
         // Every vertex of the cap's rows on the shared edge but its two ends, seen from the two elements at it.
         EXPECT_EQ(t_vertices, aspect == 0.0f ? 0 : 2 * (cap_elements - 1));
         EXPECT_LT(crack, 1e-6);  // float round-off (0.35 of the peak without interpolation's step 3)
@@ -168,7 +177,7 @@ TEST(SliverTriangles, CapIsCutAtItsAltitudeWithoutColourCracks) {
     const SliverMeasure after = measure(cap, 4.0f, hessian, "cap");
     EXPECT_GT(before.element_error, 0.3);  // measured 0.37
     EXPECT_LE(after.outside_bound, 1.0);
-    EXPECT_LT(after.corner_error, 0.1);    // measured 0.084, from 1.62
+    EXPECT_LT(after.corner_error, 0.1);  // measured 0.084, from 1.62
 }
 
 TEST(SliverTriangles, CylinderCapFanStaysConforming) {
@@ -180,7 +189,8 @@ TEST(SliverTriangles, CylinderCapFanStaysConforming) {
     const Vec3 centre(0.2f, 0.1f, 0.0f);
     for (int k = 0; k < segments; ++k) {
         const double a0 = 2 * M_PI * k / segments, a1 = 2 * M_PI * (k + 1) / segments;
-        fan.push_back({centre, centre + 0.3f * Vec3(std::cos(a0), std::sin(a0), 0), centre + 0.3f * Vec3(std::cos(a1), std::sin(a1), 0)});
+        fan.push_back({centre, centre + 0.3f * Vec3(std::cos(a0), std::sin(a0), 0),
+                       centre + 0.3f * Vec3(std::cos(a1), std::sin(a1), 0)});
     }
     const auto scene = lamp_over(fan);
     const double hessian = hessian_bound({-0.1, -0.2}, {0.5, 0.4});
@@ -188,7 +198,7 @@ TEST(SliverTriangles, CylinderCapFanStaysConforming) {
     const SliverMeasure after = measure(scene, 4.0f, hessian, "cylinder cap fan");
     EXPECT_GT(before.element_error, 0.07);  // measured 0.079
     EXPECT_LE(after.outside_bound, 1.0);
-    EXPECT_LT(after.corner_error, 0.25);    // measured 0.19, from 0.56
+    EXPECT_LT(after.corner_error, 0.25);  // measured 0.19, from 0.56
     BakeSettings s;
     s.limits.max_aspect = 4.0f;
     s.resolution = 64;
@@ -214,11 +224,12 @@ TEST(SliverTriangles, StripsTileTheTriangleWithoutTVertices) {
             std::size_t count = 0;
             for (std::size_t i = 0; i < e.size(); ++i)
                 if (e.polygon[i] == 1) area += e.area[i], ++count;
-            const double exact = 0.5 * glm::length(glm::cross(glm::dvec3(triangle[1] - triangle[0]), glm::dvec3(triangle[2] - triangle[0])));
+            const double exact = 0.5 * glm::length(glm::cross(glm::dvec3(triangle[1] - triangle[0]),
+                                                              glm::dvec3(triangle[2] - triangle[0])));
             int t_vertices = 0;
             t_vertex_crack(r, t_vertices);
-            std::printf("triangle with apex (%.1f, %.2f), element size %.3f: %zu elements\n", triangle[2].x, triangle[2].y,
-                        size, count);
+            std::printf("triangle with apex (%.1f, %.2f), element size %.3f: %zu elements\n", triangle[2].x,
+                        triangle[2].y, size, count);
             EXPECT_NEAR(area, exact, 1e-6 * exact);
             EXPECT_EQ(t_vertices, 0);
             EXPECT_GT(count, 10u);

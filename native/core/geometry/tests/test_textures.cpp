@@ -239,7 +239,8 @@ TEST(SurfaceTextures, CornersShowTheTexelTimesTheLightArriving) {
     in.textures = &textured.textures;
     const BakeResult result = bake(in, settings);
     for (std::size_t c = 0; c < 16; ++c) {  // the floor's corners
-        const Rgb expected = texel(t.view, textured.uv[2 * c], textured.uv[2 * c + 1]) * plain.light_colors.input_corner[c];
+        const Rgb expected =
+            texel(t.view, textured.uv[2 * c], textured.uv[2 * c + 1]) * plain.light_colors.input_corner[c];
         for (int k = 0; k < 3; ++k)  // to float precision: the face's mean colour is a float
             EXPECT_NEAR(result.colors.input_corner[c][k], expected[k], 1e-6 * expected[k]) << "corner " << c;
         EXPECT_NEAR(result.light_colors.input_corner[c].g, plain.light_colors.input_corner[c].g, 1e-9);

@@ -4,8 +4,8 @@
 /// cap and cancel.
 #include "bake/bake.h"
 #include "hierarchy/hierarchy.h"
-#include "transport/near_field.h"
 #include "testing/test_util.h"
+#include "transport/near_field.h"
 
 #include <gtest/gtest.h>
 #include <glm/common.hpp>
@@ -14,8 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <initializer_list>
+#include <limits>
 #include <map>
 
 namespace radiosity {
@@ -104,7 +104,8 @@ TEST(Hierarchy, PointLampLightsTheFloorExactlyAndRefinesAtTheShadowEdge) {
             const bool shadowed = std::max(std::abs(p.x), std::abs(p.y)) < 0.2f;
             const float r2 = glm::dot(p - lamp.position, p - lamp.position);
             const double exact = shadowed ? 0.0 : 0.5 * (1.0 / std::sqrt(r2)) / (M_PI * r2);
-            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 0.02 * 0.5 / M_PI) << "corner " << p.x << ", " << p.y;
+            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 0.02 * 0.5 / M_PI)
+                << "corner " << p.x << ", " << p.y;
             ++checked;
         }
     }
@@ -159,7 +160,8 @@ TEST(Hierarchy, LampLightAtTheCornersIsExactOnACoarseMesh) {
         for (int k = 0; k < 4; ++k) {
             const Vec3 d = s.lights.points[0].position - r.output.vertices[r.output.corners[e][k]];
             const double r2 = glm::dot(d, d), exact = 0.5 * (d.z / std::sqrt(r2)) / (M_PI * r2);
-            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 1e-3 * exact) << "element " << e << " corner " << k;
+            EXPECT_NEAR(r.colors.element_corner[4 * e + k].r, exact, 1e-3 * exact)
+                << "element " << e << " corner " << k;
         }
 }
 
@@ -215,7 +217,8 @@ TEST(Hierarchy, LampShadowEdgeIsResolvedWithoutFinerLinks) {
     // corner is exact, and the links are those of a bake without this detail.
     test::SceneArrays scene;
     for (float x = -2; x < 2; x += 0.5f)
-        for (float y = -2; y < 2; y += 0.5f) scene.add_quad({x, y, 0}, {x + 0.5f, y, 0}, {x + 0.5f, y + 0.5f, 0}, {x, y + 0.5f, 0}, Rgb(0.5));
+        for (float y = -2; y < 2; y += 0.5f)
+            scene.add_quad({x, y, 0}, {x + 0.5f, y, 0}, {x + 0.5f, y + 0.5f, 0}, {x, y + 0.5f, 0}, Rgb(0.5));
     scene.add_quad({-0.25f, -0.3f, 0.5f}, {-0.25f, 0.3f, 0.5f}, {0.25f, 0.3f, 0.5f}, {0.25f, -0.3f, 0.5f}, Rgb(0.0));
     HierarchySettings s = settings(0.2f, 0.01);
     SunLight sun;
@@ -301,7 +304,8 @@ TEST(Hierarchy, OutputMeshHasNoTVertices) {
     test::SceneArrays scene;
     scene.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.5));
     scene.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, Rgb(0.5));
-    const HierarchyResult r = bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(0.5f, 0.5f, 0.1f)));
+    const HierarchyResult r =
+        bake_hierarchical(scene.input(), with_lamp(settings(0.02f, 0.01), Vec3(0.5f, 0.5f, 0.1f)));
     ASSERT_GT(r.output.size(), 50u);
     EXPECT_EQ(hanging_vertices(r.output), 0u);
     for (const Rgb& c : r.colors.element_corner) EXPECT_TRUE(std::isfinite(c.r) && c.r >= 0.0);
@@ -547,7 +551,8 @@ double mean_radiance(const HierarchyResult& r, std::initializer_list<int32_t> po
     double power = 0.0, area = 0.0;
     for (std::size_t e = 0; e < r.output.size(); ++e)
         if (std::find(polygons.begin(), polygons.end(), r.output.polygon[e]) != polygons.end()) {
-            power += r.output.area[e] * (r.output_radiance[e].r + r.output_radiance[e].g + r.output_radiance[e].b) / 3.0;
+            power +=
+                r.output.area[e] * (r.output_radiance[e].r + r.output_radiance[e].g + r.output_radiance[e].b) / 3.0;
             area += r.output.area[e];
         }
     return power / area;
@@ -561,7 +566,8 @@ double absorbed_share(const HierarchyResult& r) {
         for (int c = 0; c < 3; ++c) {
             const double rho = r.output.reflectance[e][c];
             emitted += r.output.area[e] * r.output.emission[e][c];
-            if (rho > 0.0) absorbed += r.output.area[e] * (1.0 - rho) / rho * (r.output_radiance[e][c] - r.output.emission[e][c]);
+            if (rho > 0.0)
+                absorbed += r.output.area[e] * (1.0 - rho) / rho * (r.output_radiance[e][c] - r.output.emission[e][c]);
         }
     return absorbed / emitted;
 }
@@ -601,9 +607,9 @@ TEST(Hierarchy, ClutteredRoomKeepsTheEmptyRoomsLightAndAbsorbsWhatItEmits) {
     // walls 0.977x the empty room's). What this guards: a contact cut's sliver thinner than the
     // weld tolerance must not split into children without area (0 / 0: NaN); faces pressed
     // together must not light each other by round-off; clusters must not pass light between
-    // parts that hide each other. Here 100 blocks (1% of the floor): the walls keep the empty room's light within 2% (the
-    // blocks absorb about 1%), and the room, where nothing is black, absorbs what it emits within
-    // the hierarchy's own error (the empty room absorbs 98.3% at this refinement).
+    // parts that hide each other. Here 100 blocks (1% of the floor): the walls keep the empty room's light within 2%
+    // (the blocks absorb about 1%), and the room, where nothing is black, absorbs what it emits within the hierarchy's
+    // own error (the empty room absorbs 98.3% at this refinement).
     HierarchySettings s = settings(0.1f, 0.01);
     s.tolerance = 1e-4;
     s.max_rounds = HierarchySettings().max_rounds;

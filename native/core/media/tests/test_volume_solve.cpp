@@ -50,7 +50,8 @@ SolveSettings tight(Method method) {
 
 void expect_all_equal(const std::vector<Rgb>& L, const Rgb& L0, double relative, const char* what) {
     for (std::size_t x = 0; x < L.size(); ++x)
-        for (int c = 0; c < 3; ++c) ASSERT_NEAR(L[x][c] / L0[c], 1.0, relative) << what << " unknown " << x << " channel " << c;
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(L[x][c] / L0[c], 1.0, relative) << what << " unknown " << x << " channel " << c;
 }
 
 /// The unknowns but the emitting walls' back sides (emitting polygons are two-sided; the backs face
@@ -116,7 +117,8 @@ TEST(ZonalSolve, EnergyBalanceEmittedEqualsAbsorbed) {
     Rgb emitted(0.0), absorbed(0.0);
     for (std::size_t x = 0; x < box.R.rows(); ++x) {
         Rgb H(0.0);
-        for (int64_t k = box.R.row_start[x]; k < box.R.row_start[x + 1]; ++k) H += box.R.value(k) * r.radiance[box.R.col[k]];
+        for (int64_t k = box.R.row_start[x]; k < box.R.row_start[x + 1]; ++k)
+            H += box.R.value(k) * r.radiance[box.R.col[k]];
         if (x < n) {
             emitted += M_PI * double(box.elements.area[x]) * box.elements.emission[x];
             absorbed += M_PI * double(box.elements.area[x]) * (1.0 - box.elements.reflectance[x]) * H;

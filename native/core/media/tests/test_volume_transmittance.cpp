@@ -3,8 +3,8 @@
 /// layered slabs, partial voxels, rays along voxel boundaries, several media; Cycles' coefficients.
 #include "media/transmittance.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 
@@ -135,7 +135,7 @@ TEST(Zones, OnlyVoxelsWithExtinctionAreZones) {
                 m.emission[m.index(x, y, z)] = Rgb(1.0, 1.0, 1.0);
             }
     const Zones zones = build_zones({m});
-    ASSERT_EQ(zones.size(), 64u);  // of 262144 voxels
+    ASSERT_EQ(zones.size(), 64u);                      // of 262144 voxels
     EXPECT_EQ(zones.emitted[0], Rgb(0.5, 0.25, 2.0));  // emission / K_t
     EXPECT_NEAR(zones.centre[0].x, 3.05f, 1e-6f);
     const double h = 0.1f;  // the voxel edge as stored (float)

@@ -1,13 +1,14 @@
 /// @file test_volume_zonal.cpp
 /// @brief Exchange factors: rows of a closed enclosure sum to 1; a zone's self-exchange and its
 /// escape to the walls against the exact mean escape probability of a cube, split into 1, 8 and 64
-/// zones (voxels, or voxels merged into blocks), where the zonal method's point formula for volume-to-volume factors (Rushmeier & Torrance 1987) is far off.
+/// zones (voxels, or voxels merged into blocks), where the zonal method's point formula for volume-to-volume factors
+/// (Rushmeier & Torrance 1987) is far off.
 #include "media/zonal.h"
 #include "media/zonal_solver.h"
 #include "testing/test_util.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -55,8 +56,8 @@ double cube_escape_probability(double K) {
     return 8.0 * total / (4.0 * M_PI * K);
 }
 
-/// The point formula for volume-to-volume factors (Rushmeier & Torrance 1987) as fractions of zone k's light, V_kV_m / (4 K V_k) =
-/// tau(s) K V_m / (4 pi s^2) between centres, V_kV_k = 0: the escape it predicts, averaged over zones.
+/// The point formula for volume-to-volume factors (Rushmeier & Torrance 1987) as fractions of zone k's light, V_kV_m /
+/// (4 K V_k) = tau(s) K V_m / (4 pi s^2) between centres, V_kV_k = 0: the escape it predicts, averaged over zones.
 double escape_by_point_formula(const Zones& zones) {
     double escape = 0.0;
     for (std::size_t k = 0; k < zones.size(); ++k) {

@@ -16,7 +16,8 @@ namespace {
 /// varying per voxel and channel, but `holes` empty.
 Medium medium_with_holes(const std::vector<std::array<int32_t, 3>>& holes) {
     Medium m(Vec3(1.0f, -1.0f, 0.5f), 0.2f, {6, 6, 7});
-    for (std::size_t v = 0; v < m.voxel_count(); ++v) m.extinction[v] = Rgb(1.0 + 0.1 * (v % 7), 2.0, 0.5 + 0.05 * (v % 3));
+    for (std::size_t v = 0; v < m.voxel_count(); ++v)
+        m.extinction[v] = Rgb(1.0 + 0.1 * (v % 7), 2.0, 0.5 + 0.05 * (v % 3));
     for (const auto& h : holes) m.extinction[m.index(h[0], h[1], h[2])] = Rgb(0.0);
     return m;
 }
@@ -36,7 +37,8 @@ std::vector<Rgb> linear_radiance(const Medium& m) {
     std::vector<Rgb> L(m.voxel_count(), Rgb(0.0));
     for (int32_t z = 0; z < m.dims[2]; ++z)
         for (int32_t y = 0; y < m.dims[1]; ++y)
-            for (int32_t x = 0; x < m.dims[0]; ++x) L[m.index(x, y, z)] = linear(centre(m.origin, m.voxel_size, x, y, z));
+            for (int32_t x = 0; x < m.dims[0]; ++x)
+                L[m.index(x, y, z)] = linear(centre(m.origin, m.voxel_size, x, y, z));
     return L;
 }
 
@@ -59,7 +61,8 @@ void expect_linear_reproduced(const Medium& m, const MediumGrids& g, int s) {
                     continue;
                 }
                 const Rgb expected = K * linear(centre(m.origin, m.voxel_size, x, y, z, s));
-                for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(g.emission[f][ch], expected[ch], 1e-9 * expected[ch]) << x << " " << y << " " << z;
+                for (int ch = 0; ch < 3; ++ch)
+                    ASSERT_NEAR(g.emission[f][ch], expected[ch], 1e-9 * expected[ch]) << x << " " << y << " " << z;
                 ++checked;
             }
     EXPECT_GT(checked, 0);
@@ -122,9 +125,13 @@ TEST(ZonalGrids, EveryZoneKeepsItsPower) {
                 for (int k = 0; k < s; ++k)
                     for (int j = 0; j < s; ++j)
                         for (int i = 0; i < s; ++i) {
-                            const Rgb& e = g.emission[(x * s + i) + std::size_t(g.dims[0]) * ((y * s + j) + std::size_t(g.dims[1]) * (z * s + k))];
+                            const Rgb& e =
+                                g.emission[(x * s + i) + std::size_t(g.dims[0]) *
+                                                             ((y * s + j) + std::size_t(g.dims[1]) * (z * s + k))];
                             zone_sum += e * fine_volume;
-                            varies |= e.r != g.emission[(x * s) + std::size_t(g.dims[0]) * ((y * s) + std::size_t(g.dims[1]) * (z * s))].r;
+                            varies |= e.r != g.emission[(x * s) + std::size_t(g.dims[0]) *
+                                                                      ((y * s) + std::size_t(g.dims[1]) * (z * s))]
+                                                 .r;
                             for (int ch = 0; ch < 3; ++ch) ASSERT_GE(e[ch], 0.0);
                         }
                 const Rgb expected = m.extinction[v] * (zone(m, x, y, z) ? L[v] : Rgb(0.0)) * zone_volume;

@@ -8,8 +8,8 @@
 #include "media/zonal_solver.h"
 #include "testing/test_util.h"
 
-#include <glm/common.hpp>
 #include <gtest/gtest.h>
+#include <glm/common.hpp>
 
 #include <cmath>
 #include <map>
@@ -106,7 +106,8 @@ TEST(ZoneMerging, RayWalkCreditsAMergedZoneWhatItsVoxelsTake) {
         EXPECT_LE(merged_credits.size(), 8u);  // one credit per zone crossed
         for (int ch = 0; ch < 3; ++ch) {
             EXPECT_NEAR(tau_merged[ch], tau_fine[ch], 1e-6f) << "ray " << ray;
-            for (std::size_t k = 0; k < blocks.size(); ++k) EXPECT_NEAR(got[k][ch], expected[k][ch], 1e-6f) << "ray " << ray;
+            for (std::size_t k = 0; k < blocks.size(); ++k)
+                EXPECT_NEAR(got[k][ch], expected[k][ch], 1e-6f) << "ray " << ray;
         }
     }
 }
@@ -129,7 +130,9 @@ Medium two_media_with_a_seam(const Rgb& L0) {
     return m;
 }
 
-Rgb linear(const glm::dvec3& p) { return Rgb(3.0 + 0.5 * p.x - 0.7 * p.y + 0.9 * p.z, 2.0 - 0.3 * p.x, 1.5 + 0.2 * p.z); }
+Rgb linear(const glm::dvec3& p) {
+    return Rgb(3.0 + 0.5 * p.x - 0.7 * p.y + 0.9 * p.z, 2.0 - 0.3 * p.x, 1.5 + 0.2 * p.z);
+}
 
 }  // namespace
 
@@ -176,10 +179,12 @@ TEST(ZoneMerging, MergedBlocksComeBackLinearWithTheirPowerKept) {
         for (int32_t y = 0; y < 8; ++y)
             for (int32_t x = 0; x < 8; ++x) {
                 const Rgb exact = linear(glm::dvec3(m.origin) + 0.125 * glm::dvec3(x + 0.5, y + 0.5, z + 0.5));
-                for (int c = 0; c < 3; ++c) ASSERT_NEAR(voxel[m.index(x, y, z)][c], exact[c], 1e-6) << x << " " << y << " " << z;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(voxel[m.index(x, y, z)][c], exact[c], 1e-6) << x << " " << y << " " << z;
             }
     // A field that falls steeply, clamped at 0 in places: each block's mean is still its L_k.
-    for (std::size_t k = 0; k < zones.size(); ++k) L[k] = Rgb(std::exp(-8.0 * zones.centre[k].z), 0.2 - zones.centre[k].x, 1.0);
+    for (std::size_t k = 0; k < zones.size(); ++k)
+        L[k] = Rgb(std::exp(-8.0 * zones.centre[k].z), 0.2 - zones.centre[k].x, 1.0);
     for (Rgb& l : L) l = glm::max(l, Rgb(0.0));
     const std::vector<Rgb> kept = voxel_radiance(m, 0, zones, L);
     std::vector<Rgb> sum(zones.size(), Rgb(0.0));
@@ -229,7 +234,8 @@ TEST(ZoneMerging, UniformFogMergedAgreesWithTheUnmergedBake) {
     // Each merged zone against the mean of the 8 voxels it replaces.
     const std::vector<int32_t> block_of = voxel_zones(uniform_cube(8, Rgb(3.0), Rgb(0.8)), 0, merged.zones);
     std::vector<Rgb> fine_mean(merged.zones.size(), Rgb(0.0));
-    for (std::size_t k = 0; k < fine.zones.size(); ++k) fine_mean[block_of[fine.zones.voxel[k]]] += fine.zone_radiance[k] / 8.0;
+    for (std::size_t k = 0; k < fine.zones.size(); ++k)
+        fine_mean[block_of[fine.zones.voxel[k]]] += fine.zone_radiance[k] / 8.0;
     // The merged bake is the 4^3 grid's (test above), so they differ by the discretisation
     // difference between 4^3 and 8^3 zones. Measured: zones 11.2%, walls 16.5% at worst (the dark
     // floor corners), 1.9% in the area-weighted mean; against a 16^3 bake the 4^3 and 8^3 walls are

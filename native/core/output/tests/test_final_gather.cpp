@@ -134,7 +134,7 @@ TEST(FinalGather, FloorCornersAtABlocksFootSeeWhatCyclesSeesThere) {
         polygon.push_back(to_edge(from_degrees + 360.0));
         return lambert_factor(polygon, glm::dvec3(0.0, 0.0, 1.0));
     };
-    const double beside_x = visible(90.0, 180.0 + std::atan(0.5) * 180.0 / M_PI);   // approached along (2, 1)
+    const double beside_x = visible(90.0, 180.0 + std::atan(0.5) * 180.0 / M_PI);  // approached along (2, 1)
     const double diagonal = visible(90.0, 180.0);
     const double beside_y = visible(180.0 + std::atan(2.0) * 180.0 / M_PI - 180.0, 180.0);  // along (-1, -2)
     BakeSettings settings = gather_settings(0.125f, true);
@@ -264,9 +264,10 @@ TEST(FinalGather, WallStandingUnderTheEmitterHidesExactlyHalfOfIt) {
         const double worst = worst_relative_error(r, lit, expected);
         for (const Rgb& L : r.colors.input_corner)
             for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(L[k]) && L[k] >= 0.0);
-        std::printf("gather %d: floor at the wall's foot %.6f (exact %.6f), worst relative error %.2e; "
-                    "%zu points gathered, %zu buried\n",
-                    int(gather), r.colors.input_corner[lit[0]].g, expected.g, worst, r.gathered_points, r.buried_points);
+        std::printf(
+            "gather %d: floor at the wall's foot %.6f (exact %.6f), worst relative error %.2e; "
+            "%zu points gathered, %zu buried\n",
+            int(gather), r.colors.input_corner[lit[0]].g, expected.g, worst, r.gathered_points, r.buried_points);
         if (gather) {
             EXPECT_LT(worst, 1e-3);
             EXPECT_EQ(r.buried_points, 0u);
@@ -288,8 +289,10 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
         const Rgb expected = rho * I / (M_PI * h * h);
         const double worst = worst_relative_error(r, corners_at(s, Vec3(0.0f)), expected);
         std::printf("gather %d: floor under the lamp, worst relative error %.2e\n", int(gather), worst);
-        if (gather) EXPECT_LT(worst, 1e-3);
-        else EXPECT_GT(worst, 2e-2);
+        if (gather)
+            EXPECT_LT(worst, 1e-3);
+        else
+            EXPECT_GT(worst, 2e-2);
     }
 }
 
@@ -311,8 +314,8 @@ TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
         const Rgb expected = I / (M_PI * h * h);
         for (const std::size_t c : corners_at(s, Vec3(0.0f))) {
             const Rgb& light = r.light_colors.input_corner[c];
-            std::printf("gather %d: light under the lamp %.5f %.5f %.5f, exact %.5f %.5f %.5f\n", int(gather),
-                        light.r, light.g, light.b, expected.r, expected.g, expected.b);
+            std::printf("gather %d: light under the lamp %.5f %.5f %.5f, exact %.5f %.5f %.5f\n", int(gather), light.r,
+                        light.g, light.b, expected.r, expected.g, expected.b);
             if (gather) {
                 for (int k = 0; k < 3; ++k) EXPECT_NEAR(light[k] / expected[k], 1.0, 1e-3);
             } else {
@@ -350,8 +353,8 @@ TEST(FinalGather, ABendingSmoothSurfaceKeepsOneColourPerVertex) {
     const Rgb rho(0.5), Le(1.0);
     const float rise = std::tan(20.0f * float(M_PI) / 180.0f);
     test::SceneArrays s;
-    s.add_quad({-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}, rho);                  // flat, +z
-    s.add_quad({0, 0, 0}, {1, 0, rise}, {1, 1, rise}, {0, 1, 0}, rho);              // rising, about +z
+    s.add_quad({-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {-1, 1, 0}, rho);                              // flat, +z
+    s.add_quad({0, 0, 0}, {1, 0, rise}, {1, 1, rise}, {0, 1, 0}, rho);                          // rising, about +z
     s.add_quad({-0.5f, 0, 1.5f}, {-0.5f, 1, 1.5f}, {1, 1, 1.5f}, {1, 0, 1.5f}, Rgb(0), Le, 1);  // emitter, -z
     const BakeResult r = bake(s.input(), gather_settings(0.25f, true));
     ASSERT_EQ(r.gathered_points, 12u);

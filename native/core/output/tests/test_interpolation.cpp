@@ -1,5 +1,6 @@
 /// @file test_interpolation.cpp
-/// @brief Corner colours against the classic 2x2 example of border extrapolation, linear fields, hard edges, materials, clamping.
+/// @brief Corner colours against the classic 2x2 example of border extrapolation, linear fields, hard edges, materials,
+/// clamping.
 #include "output/interpolation.h"
 
 #include <gtest/gtest.h>
@@ -74,14 +75,15 @@ void expect_near(const Rgb& a, const Rgb& b, double tolerance, const std::string
 TEST(Interpolation, SeedTwoByTwoExample) {
     // Four elements, F1 F2 over F3 F4, vertices a b c / d e f / g h i.
     const Rgb B1(10, 1, 4), B2(12, 2, 4), B3(11, 1, 5), B4(15, 3, 6);
-    const Vec3 a(0, 2, 0), b(1, 2, 0), c(2, 2, 0), d(0, 1, 0), e(1, 1, 0), f(2, 1, 0), g(0, 0, 0), h(1, 0, 0), i(2, 0, 0);
+    const Vec3 a(0, 2, 0), b(1, 2, 0), c(2, 2, 0), d(0, 1, 0), e(1, 1, 0), f(2, 1, 0), g(0, 0, 0), h(1, 0, 0),
+        i(2, 0, 0);
     const Field field = [&](const Vec3& p) { return p.y > 1 ? (p.x < 1 ? B1 : B2) : (p.x < 1 ? B3 : B4); };
     const Rgb Be = (B1 + B2 + B3 + B4) / 4.0;
     const Rgb Ba = B1 + (B1 - Be), Bc = B2 + (B2 - Be), Bg = B3 + (B3 - Be), Bi = B4 + (B4 - Be);
     const std::map<std::array<float, 2>, Rgb> expected = {
-        {{a.x, a.y}, Ba}, {{b.x, b.y}, (Ba + Bc) / 2.0}, {{c.x, c.y}, Bc},
-        {{d.x, d.y}, (Ba + Bg) / 2.0}, {{e.x, e.y}, Be}, {{f.x, f.y}, (Bc + Bi) / 2.0},
-        {{g.x, g.y}, Bg}, {{h.x, h.y}, (Bg + Bi) / 2.0}, {{i.x, i.y}, Bi}};
+        {{a.x, a.y}, Ba}, {{b.x, b.y}, (Ba + Bc) / 2.0}, {{c.x, c.y}, Bc}, {{d.x, d.y}, (Ba + Bg) / 2.0},
+        {{e.x, e.y}, Be}, {{f.x, f.y}, (Bc + Bi) / 2.0}, {{g.x, g.y}, Bg}, {{h.x, h.y}, (Bg + Bi) / 2.0},
+        {{i.x, i.y}, Bi}};
 
     // One polygon of four elements, and four polygons welded by position: the same answer.
     Builder one, four;
@@ -115,7 +117,8 @@ TEST(Interpolation, LinearFieldAcrossWeldedPolygons) {
     // A 4 x 4 grid as four 2 x 2 polygons with their own vertices: seams are interior.
     Builder s;
     const Vec3 u(0.5f, 0, 0), v(0, 0.5f, 0);
-    for (const Vec3 origin : {Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) s.add_grid(origin, u, v, 2, 2, linear);
+    for (const Vec3 origin : {Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)})
+        s.add_grid(origin, u, v, 2, 2, linear);
     const CornerColors colors = interpolate_corners(s.el, s.radiance, nullptr, 0.5236f);
     for (std::size_t e = 0; e < s.el.size(); ++e)
         for (int k = 0; k < 4; ++k)

@@ -21,7 +21,10 @@ using test::max_relative_error;
 class MatrixRows final : public RowSource {
 public:
     explicit MatrixRows(std::vector<SparseRow> rows) : rows_(std::move(rows)) {}
-    void row(int32_t i, SparseRow& out) override { out = rows_[i]; ++calls; }
+    void row(int32_t i, SparseRow& out) override {
+        out = rows_[i];
+        ++calls;
+    }
     double at(int32_t i, int32_t j) const {
         const SparseRow& r = rows_[i];
         for (std::size_t k = 0; k < r.col.size(); ++k)
@@ -29,6 +32,7 @@ public:
         return 0.0;
     }
     std::size_t calls = 0;
+
 private:
     std::vector<SparseRow> rows_;
 };
@@ -82,7 +86,9 @@ test::DenseMatrix dense(const Elements& e, const MatrixRows& rows) {
     return F;
 }
 
-std::vector<Rgb> direct_solve(const Elements& e, const MatrixRows& rows) { return test::direct_solve(e, dense(e, rows)); }
+std::vector<Rgb> direct_solve(const Elements& e, const MatrixRows& rows) {
+    return test::direct_solve(e, dense(e, rows));
+}
 
 bool all_finite(const std::vector<Rgb>& v) {
     for (const Rgb& x : v)
@@ -162,7 +168,8 @@ TEST(Solver, StoredMatrixSolvesTheNonReciprocalSystemExactly) {
         EXPECT_TRUE(r.converged);
         const double error = max_relative_error(r.radiance, truth);
         EXPECT_LT(error, 1e-5) << "method " << int(m);
-        std::printf("stored, method %d: %d sweeps, %zu shots, max rel error %.3g\n", int(m), r.iterations, r.shots, error);
+        std::printf("stored, method %d: %d sweeps, %zu shots, max rel error %.3g\n", int(m), r.iterations, r.shots,
+                    error);
     }
     const SolveResult reciprocal = solve(sys.elements, rows, settings_for(Method::Progressive, 1e-10));
     std::printf("reciprocity shooting on the same rows misses by %.3g (max rel)\n",

@@ -1,9 +1,9 @@
 /// @file test_stability_convergence.cpp
 /// @brief Reflectance near 1: sweeps to converge, over-relaxation, and rows summing above 1.
 
-#include "transport/form_factors.h"
 #include "solve/solver.h"
 #include "testing/test_util.h"
+#include "transport/form_factors.h"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +16,10 @@ namespace {
 /// Furnace: closed box, uniform rho and E, so L = E / (1 - rho) everywhere.
 struct Furnace {
     explicit Furnace(double rho)
-        : elements(build_elements(test::closed_box(Vec3(1.0f, 1.5f, 0.8f), Rgb(rho), Rgb(1.0)).input(), 0.25f).elements),
-          F(compute_form_factors(elements, 32)), expected(1.0 / (1.0 - rho)) {}
+        : elements(
+              build_elements(test::closed_box(Vec3(1.0f, 1.5f, 0.8f), Rgb(rho), Rgb(1.0)).input(), 0.25f).elements),
+          F(compute_form_factors(elements, 32)),
+          expected(1.0 / (1.0 - rho)) {}
     double worst_error(const std::vector<Rgb>& L) const {
         double worst = 0.0;
         // The walls' fronts: their back sides (emitting polygons are two-sided) face out, L = E.
@@ -49,12 +51,12 @@ TEST(Convergence, OverRelaxationCutsSweepsNearRhoOne) {
         const SolveResult gs = run(f, Method::GaussSeidel, 1.0), sor = run(f, Method::GaussSeidel, omega),
                           jacobi = run(f, Method::Jacobi, 1.0);
         ASSERT_TRUE(gs.converged && sor.converged && jacobi.converged);
-        std::printf("rho %.2f: sweeps Jacobi %d, Gauss-Seidel %d, SOR (omega %.3f) %d; furnace error %.1e / %.1e\n", rho,
-                    jacobi.iterations, gs.iterations, omega, sor.iterations, f.worst_error(gs.radiance),
+        std::printf("rho %.2f: sweeps Jacobi %d, Gauss-Seidel %d, SOR (omega %.3f) %d; furnace error %.1e / %.1e\n",
+                    rho, jacobi.iterations, gs.iterations, omega, sor.iterations, f.worst_error(gs.radiance),
                     f.worst_error(sor.radiance));
         EXPECT_LT(f.worst_error(sor.radiance), 1e-4);
         if (rho == 0.99) {
-            EXPECT_GT(gs.iterations, 500);               // measured
+            EXPECT_GT(gs.iterations, 500);                 // measured
             EXPECT_LT(sor.iterations, gs.iterations / 5);  // measured
         }
     }

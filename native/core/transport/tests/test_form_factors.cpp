@@ -1,8 +1,8 @@
 /// @file test_form_factors.cpp
 /// @brief Form-factor matrices: area-to-area closed forms, row sums and reciprocity, progress and cancel.
 
-#include "transport/form_factors.h"
 #include "testing/test_util.h"
+#include "transport/form_factors.h"
 
 #include <gtest/gtest.h>
 
@@ -149,11 +149,12 @@ TEST(FormFactors, ReportsProgressAndCancels) {
 
     std::size_t calls_after_cancel = 0;
     bool cancelled = false;
-    EXPECT_THROW(compute_form_factors(e, 16, [&](const Progress&) {
-                     if (cancelled) ++calls_after_cancel;
-                     cancelled = true;
-                     return false;
-                 }),
+    EXPECT_THROW(compute_form_factors(e, 16,
+                                      [&](const Progress&) {
+                                          if (cancelled) ++calls_after_cancel;
+                                          cancelled = true;
+                                          return false;
+                                      }),
                  Cancelled);
     EXPECT_LE(calls_after_cancel, 2u);  // at most a report already under way on another thread
 }

@@ -1,10 +1,10 @@
 /// @file test_lights.cpp
 /// @brief Direct light from lamps against the inverse-square law, Lambert's cosine and shadows.
-#include "transport/lights.h"
 #include "testing/test_util.h"
+#include "transport/lights.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 

@@ -2,9 +2,9 @@
 /// @brief Near-field form factors against Howell's closed forms; corrected rows for shared edges,
 /// a small patch under a large one, reciprocity and the furnace of a closed box.
 
+#include "testing/test_util.h"
 #include "transport/form_factors.h"
 #include "transport/near_field.h"
-#include "testing/test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -123,9 +123,10 @@ TEST(NearField, SmallPatchUnderALargeOne) {
     const float a = 1.0f, s = 0.01f, h = 0.1f;
     const Elements e = build_elements(small_under_large(a, s, h).input(), 0.0f).elements;
     const double F_sl = 4 * point_to_parallel_corner(a, a, h), F_ls = double(s) * s * F_sl / (4.0 * a * a);
-    const SparseMatrix before = compute_form_factors(e, rows_at(128, false)), after = compute_form_factors(e, rows_at(128, true));
-    std::printf("small under large: F_ls %.3e -> %.3e (exact %.3e), F_sl %.6f -> %.6f (exact %.6f)\n", entry(before, 0, 1),
-                entry(after, 0, 1), F_ls, entry(before, 1, 0), entry(after, 1, 0), F_sl);
+    const SparseMatrix before = compute_form_factors(e, rows_at(128, false)),
+                       after = compute_form_factors(e, rows_at(128, true));
+    std::printf("small under large: F_ls %.3e -> %.3e (exact %.3e), F_sl %.6f -> %.6f (exact %.6f)\n",
+                entry(before, 0, 1), entry(after, 0, 1), F_ls, entry(before, 1, 0), entry(after, 1, 0), F_sl);
     EXPECT_GT(entry(before, 0, 1) / F_ls, 100.0);
     EXPECT_NEAR(entry(after, 0, 1) / F_ls, 1.0, 1e-4);
     EXPECT_NEAR(entry(after, 1, 0) / F_sl, 1.0, 1e-4);
@@ -145,7 +146,8 @@ TEST(NearField, ClosedBoxReciprocityAndFurnaceRowSums) {
                 for (int64_t k = F.row_start[i]; k < F.row_start[i + 1]; ++k) {
                     sum += F.val[k];
                     const auto j = F.col[k];
-                    worst[on] = std::max(worst[on], std::abs(e.area[i] * F.val[k] - e.area[j] * entry(F, j, int32_t(i))) / e.area[i]);
+                    worst[on] = std::max(
+                        worst[on], std::abs(e.area[i] * F.val[k] - e.area[j] * entry(F, j, int32_t(i))) / e.area[i]);
                 }
                 ASSERT_NEAR(sum, 1.0, 1e-5) << "row " << i << " near field " << on;
             }

@@ -17,9 +17,9 @@ using namespace radiosity;
 
 namespace {
 
-constexpr double kRho = 0.5, kSun = 1.0;        // floor reflectance, sun irradiance
-constexpr float kLo = 0.13f, kHi = 0.53f;       // the box's footprint [kLo, kHi]^2, 0.4 m tall
-const double kLit = kRho * kSun / M_PI;         // the lit floor's exact radiance
+constexpr double kRho = 0.5, kSun = 1.0;   // floor reflectance, sun irradiance
+constexpr float kLo = 0.13f, kHi = 0.53f;  // the box's footprint [kLo, kHi]^2, 0.4 m tall
+const double kLit = kRho * kSun / M_PI;    // the lit floor's exact radiance
 
 /// A 2 x 2 m floor with a black 0.4 m box standing on it (bottom face included, facing down), lit
 /// by a sun straight down: the floor is exactly kLit outside the footprint and 0 inside it (the
@@ -38,15 +38,21 @@ test::SceneArrays box_on_floor() {
 }
 
 struct ContactMeasure {
-    int straddling = 0;        ///< floor elements with corners inside and outside the footprint
-    double lit_ring = 0.0;     ///< worst |L - lit| / lit of floor elements reaching outside and touching the outline
-    double footprint = 0.0;    ///< brightest floor element reaching into the footprint / lit (light under the box)
-    double lit_corner = 0.0;   ///< worst |colour - lit| / lit at corners outside or on the outline of elements reaching outside
-    double dark_corner = 0.0;  ///< brightest colour / lit at corners inside or on the outline of elements reaching inside
+    int straddling = 0;      ///< floor elements with corners inside and outside the footprint
+    double lit_ring = 0.0;   ///< worst |L - lit| / lit of floor elements reaching outside and touching the outline
+    double footprint = 0.0;  ///< brightest floor element reaching into the footprint / lit (light under the box)
+    double lit_corner =
+        0.0;  ///< worst |colour - lit| / lit at corners outside or on the outline of elements reaching outside
+    double dark_corner =
+        0.0;  ///< brightest colour / lit at corners inside or on the outline of elements reaching inside
 };
 
-bool inside(const Vec3& v, float slack) { return v.x > kLo + slack && v.x < kHi - slack && v.y > kLo + slack && v.y < kHi - slack; }
-bool outside(const Vec3& v, float slack) { return v.x < kLo - slack || v.x > kHi + slack || v.y < kLo - slack || v.y > kHi + slack; }
+bool inside(const Vec3& v, float slack) {
+    return v.x > kLo + slack && v.x < kHi - slack && v.y > kLo + slack && v.y < kHi - slack;
+}
+bool outside(const Vec3& v, float slack) {
+    return v.x < kLo - slack || v.x > kHi + slack || v.y < kLo - slack || v.y > kHi + slack;
+}
 
 /// The floor's elements (polygon 0) of a bake of box_on_floor: its mesh, radiances and corner colours.
 ContactMeasure measure_floor(const Elements& e, const std::vector<Rgb>& radiance, const std::vector<Rgb>& corners) {
@@ -77,10 +83,10 @@ ContactMeasure measure_floor(const Elements& e, const std::vector<Rgb>& radiance
 }
 
 void print(const char* bake, float element_size, bool cut, const ContactMeasure& m) {
-    std::printf("box on floor, %s, %.2f m elements, cut %s: %d straddling; lit ring error %.4f, footprint %.4f of the "
-                "lit floor; corners on the outline: lit side error %.4f, dark side %.4f\n",
-                bake, element_size, cut ? "on " : "off", m.straddling, m.lit_ring, m.footprint, m.lit_corner,
-                m.dark_corner);
+    std::printf(
+        "box on floor, %s, %.2f m elements, cut %s: %d straddling; lit ring error %.4f, footprint %.4f of the "
+        "lit floor; corners on the outline: lit side error %.4f, dark side %.4f\n",
+        bake, element_size, cut ? "on " : "off", m.straddling, m.lit_ring, m.footprint, m.lit_corner, m.dark_corner);
 }
 
 ContactMeasure measure(float element_size, bool cut) {
@@ -112,10 +118,10 @@ TEST(Contacts, UncutFloorLeaksUnderABoxAndDarkensAroundIt) {
     for (float size : {0.3f, 0.12f}) {  // 8 and 16 floor elements straddle the outline
         const ContactMeasure m = measure(size, false);
         EXPECT_GT(m.straddling, 0);
-        EXPECT_GT(m.footprint, 0.9);     // measured 0.998 and 1.0: the lit floor reaches under the box
-        EXPECT_GT(m.lit_ring, 0.3);      // measured 0.35 and 0.38: the floor around it is darkened
-        EXPECT_GT(m.dark_corner, 0.7);   // measured 0.73 and 0.75
-        EXPECT_GT(m.lit_corner, 0.1);    // measured 0.12 and 0.19
+        EXPECT_GT(m.footprint, 0.9);    // measured 0.998 and 1.0: the lit floor reaches under the box
+        EXPECT_GT(m.lit_ring, 0.3);     // measured 0.35 and 0.38: the floor around it is darkened
+        EXPECT_GT(m.dark_corner, 0.7);  // measured 0.73 and 0.75
+        EXPECT_GT(m.lit_corner, 0.1);   // measured 0.12 and 0.19
     }
 }
 
@@ -160,7 +166,8 @@ TEST(Contacts, CornellBoxIsCutAlongTheBlocksAndTheLightOnly) {
             // On a block's outline: x or y constant at one of its sides, 0.15/0.45 or 0.55/0.85.
             // On the light's: 0.4/0.6.
             auto side = [&](float v) {
-                return e.polygon[i] == 0 ? v == 0.15f || v == 0.45f || v == 0.55f || v == 0.85f : v == 0.4f || v == 0.6f;
+                return e.polygon[i] == 0 ? v == 0.15f || v == 0.45f || v == 0.55f || v == 0.85f
+                                         : v == 0.4f || v == 0.6f;
             };
             const bool on_side = (a.x == b.x && side(a.x)) || (a.y == b.y && side(a.y));
             EXPECT_TRUE(on_side) << e.polygon[i] << ": " << a.x << " " << a.y << " - " << b.x << " " << b.y;
@@ -190,7 +197,8 @@ TEST(Contacts, AFaceOnAConcaveNeighboursEdgeIsNoCut) {
     inside_floor.add_polygon({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, Rgb(0.5), Rgb(0));
     inside_floor.add_quad({0.5f, 1, 0}, {0.5f, 1, 1}, {0.5f, 2, 1}, {0.5f, 2, 0}, Rgb(0.5));
     int flagged = 0;
-    for (const uint8_t bits : build_elements(inside_floor.input(), 0.3f, ElementLimits().with_contacts()).elements.cut_edges)
+    for (const uint8_t bits :
+         build_elements(inside_floor.input(), 0.3f, ElementLimits().with_contacts()).elements.cut_edges)
         flagged += __builtin_popcount(bits);
     EXPECT_GT(flagged, 0);
 }

@@ -4,11 +4,11 @@
 /// importance sampling finds with few rays.
 #include "bake/bake.h"
 #include "hierarchy/hierarchy.h"
-#include "transport/world.h"
 #include "testing/test_util.h"
+#include "transport/world.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
 /// @file test_hemicube.cpp
 /// @brief Cube weights and hemi-cube rendering against closed forms.
 
-#include "visibility/hemicube.h"
 #include "testing/test_util.h"
+#include "visibility/hemicube.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <numeric>
@@ -38,7 +38,8 @@ TEST(CubeWeights, DeltaFormFactorsSumToOneAndSolidAnglesToFourPi) {
         ASSERT_EQ(w->form_factor.size(), std::size_t(3 * n * n));
         ASSERT_EQ(w->solid_angle.size(), std::size_t(6 * n * n));
         EXPECT_NEAR(std::accumulate(w->form_factor.begin(), w->form_factor.end(), 0.0), 1.0, 1e-6) << n;
-        EXPECT_NEAR(std::accumulate(w->solid_angle.begin(), w->solid_angle.end(), 0.0), 4.0 * M_PI, 4.0 * M_PI * 1e-6) << n;
+        EXPECT_NEAR(std::accumulate(w->solid_angle.begin(), w->solid_angle.end(), 0.0), 4.0 * M_PI, 4.0 * M_PI * 1e-6)
+            << n;
     }
 }
 
@@ -125,8 +126,10 @@ TEST(Hemicube, CellDirectionsPointAtTheElementsTheySee) {
     Hemicube hemicube(CubeWeights::make(16));
     const Vec3 eye(0.3f, 0.6f, 0.45f);
     for (bool sphere : {true, false}) {
-        if (sphere) hemicube.render_sphere(r.elements, eye, -1);
-        else hemicube.render_hemisphere(r.elements, eye, glm::normalize(Vec3(1, 2, -0.5f)), -1);
+        if (sphere)
+            hemicube.render_sphere(r.elements, eye, -1);
+        else
+            hemicube.render_hemisphere(r.elements, eye, glm::normalize(Vec3(1, 2, -0.5f)), -1);
         const auto& items = hemicube.item_buffer();
         for (std::size_t cell = 0; cell < items.size(); ++cell) {
             ASSERT_GE(items[cell], 0);

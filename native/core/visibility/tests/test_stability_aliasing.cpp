@@ -2,13 +2,13 @@
 /// @brief Hemi-cube aliasing of a small distant patch: its factor's error against resolution,
 /// orientation averaging, and the resolution recommended_resolution picks.
 
-#include "transport/near_field.h"
-#include "visibility/resolution.h"
-#include "transport/row_renderer.h"
 #include "testing/test_util.h"
+#include "transport/near_field.h"
+#include "transport/row_renderer.h"
+#include "visibility/resolution.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 
@@ -20,7 +20,8 @@ namespace {
 /// direction p of 64 spread over the hemisphere (elevation 11 to 80 degrees).
 Elements patch_scene(float side, int p) {
     const double azimuth = 2 * M_PI * std::fmod(p * 0.6180339887, 1.0), elevation = 0.2 + 1.2 * (p + 0.5) / 64;
-    const glm::dvec3 c(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    const glm::dvec3 c(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                       std::sin(elevation));
     const glm::dvec3 u = glm::normalize(glm::cross(-c, glm::dvec3(0.3, 0.5, 0.7))), v = glm::cross(-c, u);
     const double h = side / 2.0;
     auto at = [&](double a, double b) { return Vec3(c + a * u + b * v); };
@@ -43,7 +44,8 @@ double rms_error(float side, int resolution, int rotations) {
         const Elements e = patch_scene(side, p);
         glm::dvec3 q[4];
         for (int k = 0; k < 4; ++k) q[k] = glm::dvec3(e.vertices[e.corners[1][k]]);
-        const double exact = point_to_polygon(glm::dvec3(e.centre[0]), glm::dvec3(e.normal[0]), q, 4, glm::dvec3(e.normal[1]));
+        const double exact =
+            point_to_polygon(glm::dvec3(e.centre[0]), glm::dvec3(e.normal[0]), q, 4, glm::dvec3(e.normal[1]));
         renderer.row(e, 0, row);
         double F = 0.0;
         for (std::size_t k = 0; k < row.col.size(); ++k)
@@ -63,7 +65,7 @@ TEST(Aliasing, SmallDistantPatchNeedsResolution) {
     const double rotated = rms_error(0.01f, 128, 4);
     std::printf("1 cm patch at 1 m: RMS error %.3f at 128, %.3f at 128 x 4 orientations, %.3f at %d (recommended)\n",
                 at_128, rotated, at_recommended, recommended);
-    EXPECT_GT(at_128, 0.5);          // measured 0.76
+    EXPECT_GT(at_128, 0.5);            // measured 0.76
     EXPECT_LT(rotated, 0.6 * at_128);  // measured 0.38: averaging helps, at 4x the renders
     EXPECT_EQ(recommended, 566);
     EXPECT_LT(at_recommended, 0.1);  // measured 0.088
