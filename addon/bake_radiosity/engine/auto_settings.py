@@ -60,14 +60,15 @@ class Preset:
 # maps): every output corner takes its direct light from each emitter and lamp at the point and its
 # indirect light from rays into the solution, corners next to seams again from the seams' gathered
 # light. The presets' gathered solutions on the Cornell box, per vertex against a deep Cycles truth
-# with Cycles timed in the same run (docs/accuracy.md, the race): Draft 1,728 elements and 256 rays
-# 4.4% in 0.33 CPU s (Cycles 14x as long for that error; at 1/8 of the scene, 432 elements, 11.6%);
-# Medium the same elements and 1024 rays 2.5% in 0.60 s (25x); High 3,888 elements, near field and
-# 4096 rays 2.0% in 3.0 s (8.9x). The ungathered Medium solution (6,912 elements): 5.4% in 3.8 s.
+# (docs/accuracy.md, the race; lab runs at a load of 12 to 20): Medium's 1,728 elements with 1024
+# rays 1.8%, 2048 1.5%, 3136 (56 x 56) 1.4%, 4096 1.4% in 1.3, 1.9, 2.8 and 3.5 CPU s; High's
+# 3,888 elements with near field and 4096 rays 1.4% in 7.5 s, 6,912 with cells 4 1.1% in 13 s (cells
+# 6: the same error in 17 s). Rays beyond 4096 buy little: what is left is the solution the rays
+# read and the blocks' feet.
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
-    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True, gathered=Gathered(16, 4.0, near_field=False, rays=1024)),
-    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True, gathered=Gathered(24, 6.0, near_field=True, rays=4096)),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True, gathered=Gathered(16, 4.0, near_field=False, rays=3136)),
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True, gathered=Gathered(32, 4.0, near_field=True, rays=4096)),
 }
 # Custom quality's final gather.
 GATHER_RAYS = 1024

@@ -35,8 +35,10 @@
 ///
 /// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
 /// other surface right at the seam, where the interpolated solution is least like the light. So
-/// the vertices on seams are gathered too, and the points whose rays met a seam are gathered
-/// again from those values, in 3 passes in all (the last for the output points only).
+/// the vertices on seams are gathered too; the points whose rays met a seam are gathered again
+/// from those values, keeping what those rays read there as weights on the seam vertices' light,
+/// and that light is then solved (each seam point's light is linear in its neighbours'), as if
+/// they were gathered from each other until nothing changed.
 ///
 /// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
 /// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
