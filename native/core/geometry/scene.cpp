@@ -408,6 +408,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
                            const ProgressFn& progress) {
     if (!(max_edge >= 0.0f) || !std::isfinite(max_edge)) throw InputError("max_edge must be finite and >= 0");
     validate_arrays(in);
+    detail::report_progress(progress, "elements", 0, in.face_count);  // before the intersections are found
     BuildResult result;
     Elements& out = result.elements;
     const std::size_t corner_count = in.face_count ? static_cast<std::size_t>(in.face_offsets[in.face_count]) : 0;
@@ -431,7 +432,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
     const std::size_t report_every = std::max<std::size_t>(1, in.face_count / 100);
     for (std::size_t f = 0; f < in.face_count; ++f) {
-        if (f % report_every == 0) detail::report_progress(progress, "elements", f, in.face_count);
+        if (f > 0 && f % report_every == 0) detail::report_progress(progress, "elements", f, in.face_count);
         if (!usable[f]) continue;
         read_polygon(in, f, p, normal);
         const int32_t first = in.face_offsets[f];
