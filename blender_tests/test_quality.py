@@ -26,7 +26,7 @@ ui = sys.modules[harness.MODULE + ".ui"]
 # hemi-cube cells the smallest elements must cover, tolerance).
 # (element size as a share of the scene's size, cells, tolerance) with the final gather (the default)
 # and without it.
-DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 16, 4, 1e-4), "HIGH": (1 / 24, 6, 1e-5)}
+DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 16, 4, 1e-4), "HIGH": (1 / 32, 4, 1e-5)}
 UNGATHERED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 32, 6, 1e-4), "HIGH": (1 / 48, 8, 1e-5)}
 
 
