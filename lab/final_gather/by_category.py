@@ -73,7 +73,7 @@ def main():
     truth = vertex_error.Truth([luminance(c) for c in stored["colors"]])
     positions, masks = categories(box, luminance.vertices)
     print("truth %s: %d seeds, noise %.3f%%" % (cached[0], len(stored["seeds"]), 100 * truth.noise()))
-    auto_settings = sys.modules[harness.MODULE + ".auto_settings"]
+    auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 
     def bake(quality, rays=None, report=True):
         presets = dict(auto_settings.PRESETS)
