@@ -7,7 +7,7 @@ import time
 import bpy
 
 from . import export, facing, media_export, media_writeback, outliers, world, writeback
-from .engine import auto_settings, energy, error_estimate, media_energy, native, solve
+from .engine import auto_settings, energy, error_estimate, media_energy, solve
 from .engine import summary as summary_lines
 from .engine.errors import BakeError
 
@@ -103,14 +103,7 @@ class BakeJob:
 
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
-        with solve.core_errors_as_bake_errors():
-            try:
-                self.result = solve.bake(self.exported, self.core_settings(), progress)
-            except native.core().NumericalError as error:
-                # Light that is not a number is the bake's fault, never a result to write: say where.
-                raise BakeError("The bake failed: light stopped being a number in its '%s' phase at %s. Nothing "
-                                "was written; please report this scene"
-                                % (error.phase, self.polygon_name(error.polygon))) from error
+        self.result = solve.bake(self.exported, self.core_settings(), progress)
         self.warnings += self._skipped_warnings()
         self.warnings += facing.turned_away_warnings(self.exported, self.result["corner_radiance"])
         hierarchy = self.result.get("hierarchy")
@@ -199,13 +192,6 @@ class BakeJob:
             return "the World only"
         return " and ".join(sources) or "nothing"
 
-    def polygon_name(self, polygon):
-        """'<object> face <n>' for an exported polygon index ('a lamp' for lamp polygons, 'no one face' for -1)."""
-        if polygon < 0:
-            return "no one face"
-        part = next((p for p in self.exported.parts if p.polygon_start <= polygon < p.polygon_stop), None)
-        return "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "a lamp"
-
     def _skipped_warnings(self):
         skipped = [(polygon, reason) for polygon, reason in self.result["skipped"]
                    if polygon not in self.far_polygons]  # named already, as far away
@@ -213,7 +199,7 @@ class BakeJob:
             return []
         names = []
         for polygon, reason in skipped[:5]:
-            where = self.polygon_name(polygon)
+            where = self.exported.polygon_name(polygon)
             names.append("%s (%s)" % ("lamp" if where == "a lamp" else where, reason))
         return ["%d face(s) skipped: %s%s" % (len(skipped), ", ".join(names), ", ..." if len(skipped) > 5 else "")]
 

@@ -46,6 +46,13 @@ class ExportedScene:
     def polygon_count(self):
         return len(self.face_offsets) - 1
 
+    def polygon_name(self, polygon):
+        """'<object> face <n>' for an exported polygon index ('a lamp' for lamp polygons, 'no one face' for -1)."""
+        if polygon < 0:
+            return "no one face"
+        part = next((p for p in self.parts if p.polygon_start <= polygon < p.polygon_stop), None)
+        return "%s face %d" % (part.object_name, polygon - part.polygon_start) if part else "a lamp"
+
     def scene_arrays(self):
         """The arrays `_core.plan` and `_core.bake` take first, in their order."""
         return (self.positions, self.face_offsets, self.corner_vertices, self.reflectance, self.emission,

@@ -16,6 +16,18 @@ def core_errors_as_bake_errors():
         raise BakeError(str(error)) from error
 
 
+@contextlib.contextmanager
+def numerical_errors_named(scene):
+    """Light that is not a number (`_core.NumericalError`) is the bake's fault, never a result to
+    write: a BakeError saying in which phase and on which object's face."""
+    try:
+        yield
+    except native.core().NumericalError as error:
+        where = scene.polygon_name(error.polygon)
+        raise BakeError("The bake failed: light stopped being a number in its '%s' phase at %s. Nothing was "
+                        "written; please report this scene" % (error.phase, where)) from error
+
+
 def core_settings(choice, settings, lights, world=None, media=()):
     """The keyword settings of `_core.plan` and `_core.bake` for `choice` (auto_settings.choose),
     the artist's `settings` (max_iterations, hard_edge_angle), the exported lamps, the World's map
@@ -54,7 +66,7 @@ def plan(scene, keywords):
 
 def bake(scene, keywords, progress=None):
     """`_core.bake` of `scene` with `keywords`; `progress`: a callback or a `_core.ProgressMonitor`."""
-    with core_errors_as_bake_errors():
+    with core_errors_as_bake_errors(), numerical_errors_named(scene):
         return native.core().bake(*scene.scene_arrays(), front_only=scene.front_only,
                                   textures=scene.textures if textures_baked(keywords) else None,
                                   progress=progress, **keywords)
