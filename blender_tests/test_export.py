@@ -17,6 +17,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 export = sys.modules[harness.MODULE + ".export"]
+polygons = sys.modules[harness.MODULE + ".engine.polygons"]
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
 
 
@@ -78,7 +79,7 @@ def build_geometry_scene():
 def test_geometry_matches_blender():
     modified, mirrored, instanced, empty = build_geometry_scene()
     exported, depsgraph = exported_scene()
-    normals, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
+    normals, areas = polygons.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
     counts = np.diff(exported.face_offsets)
     polygon_of_corner = np.repeat(np.arange(len(counts)), counts)
     centers = np.zeros((len(counts), 3))
@@ -182,7 +183,7 @@ def test_lamps_in_cycles_units():
     np.testing.assert_allclose(by_type["SUN"]["direction"], down_tilted, atol=1e-6)
 
     lamp_polygon = exported.polygon_count - 1
-    normals, areas = export.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
+    normals, areas = polygons.polygon_normals_areas(exported.positions, exported.face_offsets, exported.corner_vertices)
     area = (0.5 * 2) * 0.25
     assert abs(areas[lamp_polygon] - area) < 1e-6, areas[lamp_polygon]
     np.testing.assert_allclose(normals[lamp_polygon], down_tilted, atol=1e-6)
