@@ -19,7 +19,7 @@ import scenes  # noqa: E402
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 media_export = importlib.import_module(harness.MODULE + ".media_export")
-native = importlib.import_module(harness.MODULE + ".native")
+native = importlib.import_module(harness.MODULE + ".engine.native")
 
 core = native.core()
 ZONE = 0.25

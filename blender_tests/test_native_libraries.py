@@ -20,7 +20,7 @@ import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
-native = sys.modules[harness.MODULE + ".native"]
+native = sys.modules[harness.MODULE + ".engine.native"]
 
 # The C and C++ runtimes are one per process by design: their names are shared, not clashes.
 RUNTIMES = ("libc.so", "libm.so", "libstdc++.so", "libgcc_s.so", "ld-linux")

@@ -20,7 +20,7 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 pipeline = sys.modules[harness.MODULE + ".pipeline"]
 operators = sys.modules[harness.MODULE + ".operators"]
-native = sys.modules[harness.MODULE + ".native"]
+native = sys.modules[harness.MODULE + ".engine.native"]
 
 QUICK = dict(element_size=0.125, hemicube_resolution=64)  # 4 x 4 walls: 2 x 2 elements a face
 
