@@ -1,6 +1,7 @@
 """The solved media into the file: per medium an OpenVDB file with grids `density` (extinction
 K_t) and `emission` (K_t J), loaded as a Volume object in the "Radiosity Bake" collection with a
-purely absorbing, emitting material, so Cycles renders the zonal method's ray integral (Rushmeier & Torrance 1987; bake/media_bake.h).
+purely absorbing, emitting material, so Cycles renders the zonal method's ray integral
+(Rushmeier & Torrance 1987; bake/media_bake.h).
 The grids come from the core finer than the zones (`_core.bake`'s grid_subdivision, 3 cells
 per zone edge by default), J interpolated between zones (zonal_grids.h), with their own origin
 and voxel size."""
