@@ -208,5 +208,39 @@ TEST(Bake, ProgressPassesThroughAndCancels) {
     }
 }
 
+TEST(Bake, PlanGivesTheElementsEachPipelineSolves) {
+    // A block standing on a floor in fog: the uniform bake cuts the floor along the block's
+    // footprint, the media bake does not, and the hierarchy starts from one patch a polygon.
+    test::SceneArrays scene;
+    scene.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, Rgb(0.5), Rgb(1.0));
+    scene.add_quad({-0.3f, -0.3f, 0.5f}, {-0.3f, 0.3f, 0.5f}, {0.3f, 0.3f, 0.5f}, {0.3f, -0.3f, 0.5f}, Rgb(0.5));
+    scene.add_quad({-0.3f, -0.3f, 0}, {0.3f, -0.3f, 0}, {0.3f, -0.3f, 0.5f}, {-0.3f, -0.3f, 0.5f}, Rgb(0.5));
+    BakeSettings uniform = settings_for(Method::GaussSeidel, 0.5f, 16);
+    BakeSettings media = uniform;
+    Medium fog(Vec3(-1.0f, -1.0f, 0.0f), 0.5f, {4, 4, 2});
+    for (std::size_t v = 0; v < fog.voxel_count(); ++v)
+        fog.set(v, principled_volume(Rgb(0.8), 0.5, Rgb(0.0), 0.0, Rgb(0.0)));
+    media.media.media = {fog};
+    media.media.zone_resolution = 8;
+    BakeSettings hierarchical = uniform;
+    hierarchical.hierarchical.enabled = true;
+
+    const BakePlan uniform_plan = plan(scene.input(), uniform), media_plan = plan(scene.input(), media);
+    EXPECT_GT(uniform_plan.build.elements.size(), media_plan.build.elements.size());  // the contact cuts
+    for (const BakeSettings* settings : {&uniform, &media}) {
+        const BakePlan planned = plan(scene.input(), *settings);
+        const BakeResult baked = bake(scene.input(), *settings);
+        ASSERT_EQ(planned.build.elements.size(), baked.build.elements.size());
+        EXPECT_EQ(planned.build.elements.vertices, baked.build.elements.vertices);
+        EXPECT_EQ(planned.build.elements.corners, baked.build.elements.corners);
+        EXPECT_EQ(planned.matrix_stored, baked.matrix_stored);
+    }
+    EXPECT_EQ(uniform_plan.matrix_bytes_bound, matrix_bytes_bound(uniform_plan.build.elements.size(), 16));
+    const BakeResult tree = bake(scene.input(), hierarchical);
+    ASSERT_TRUE(tree.hierarchy.has_value());
+    EXPECT_EQ(plan(scene.input(), hierarchical).build.elements.size(), tree.hierarchy->patches);
+    ASSERT_TRUE(bake(scene.input(), media).media.has_value());
+}
+
 }  // namespace
 }  // namespace radiosity
