@@ -170,20 +170,20 @@ def _principled(node, groups, weight, images):
     # Metals have no diffuse lobe: only the dielectric part reflects diffusely.
     diffuse = 1.0 - metallic
     if bpy.app.version >= (4, 0, 0):
-        layer, more = _under_specular_layer(node, groups)
+        layer, more = _under_specular_layer(node, groups, images)
         diffuse, problems = diffuse * layer, problems + more
     return Surface(weight * base * diffuse, weight * emission * strength, problems,
                    reflectance_texture=_scaled(base_texture, weight * diffuse),
                    emission_texture=_scaled(emission_texture, weight * strength))
 
 
-def _under_specular_layer(node, groups):
+def _under_specular_layer(node, groups, images):
     """The share of a 4.x Principled BSDF's diffuse weight its specular layer leaves (see
-    SPECULAR_ALBEDO_OVER_F0), and problems."""
+    SPECULAR_ALBEDO_OVER_F0), and problems. A texture on the tint counts as its mean colour."""
     ior, problems = _number(node.inputs["IOR"], groups)
     level, more = _number(node.inputs["Specular IOR Level"], groups)
     roughness, more2 = _number(node.inputs["Roughness"], groups)
-    tint, more3 = _color(node.inputs["Specular Tint"], groups)
+    tint, more3, _ = _color(node.inputs["Specular Tint"], groups, images)
     f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * level * max(float(np.max(tint)), 0.0)
     albedo = f0 * np.interp(min(max(roughness, 0.0), 1.0), *SPECULAR_ALBEDO_OVER_F0)
     return 1.0 - min(albedo, 1.0), problems + more + more2 + more3
