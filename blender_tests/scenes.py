@@ -3,9 +3,13 @@
 Every mesh is made with foreach_set; normals follow the quads' winding (u x v)."""
 
 import math
+import os
+import tempfile
 
 import bpy
 import numpy as np
+
+import harness
 
 WHITE = (0.73, 0.73, 0.73)
 RED = (0.63, 0.065, 0.05)
@@ -91,6 +95,42 @@ def diffuse(name, color):
     output = nodes.new("ShaderNodeOutputMaterial")
     material.node_tree.links.new(bsdf.outputs["BSDF"], output.inputs["Surface"])
     return material
+
+
+def save_png(name, rgb):
+    """An (height, width, 3) image, bottom row first, saved as an 8-bit sRGB PNG `name`.png in a new
+    temporary folder; returns its path."""
+    height, width = rgb.shape[:2]
+    image = bpy.data.images.new(name, width, height)
+    rgba = np.ones((height, width, 4), dtype=np.float32)
+    rgba[:, :, :3] = rgb
+    image.pixels.foreach_set(rgba.ravel())
+    path = os.path.join(tempfile.mkdtemp(), name + ".png")
+    image.filepath_raw = path
+    image.file_format = "PNG"
+    image.save()
+    bpy.data.images.remove(image)
+    return path
+
+
+def image_texture_material(name, image, color, interpolation):
+    """diffuse(name, color) with an Image Texture of `image` on its Color."""
+    material = diffuse(name, color)
+    nodes = material.node_tree.nodes
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    texture.interpolation = interpolation
+    bsdf = next(n for n in nodes if n.bl_idname == "ShaderNodeBsdfDiffuse")
+    material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Color"])
+    return material
+
+
+def floor_with_uv_map(size, cells, material):
+    """A size x size floor of cells x cells faces at z = 0 whose UV map spans the whole image once."""
+    floor = mesh_object("Floor", [grid((0, 0, 0), (size, 0, 0), (0, size, 0), cells, cells) + (0,)], [material])
+    uv = floor.data.uv_layers.new(name="UVMap")
+    uv.data.foreach_set("uv", (harness.corner_positions(floor.data)[:, :2] / size).astype(np.float32).ravel())
+    return floor
 
 
 def emission(name, color, strength):

@@ -13,7 +13,6 @@ wall gives its radiance back); Unwire Baked Light restores the node trees exactl
 import importlib
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -42,28 +41,8 @@ def checker_image():
     """An 8 x 8 checker PNG in a temporary folder, loaded as an sRGB byte image."""
     size = 8
     i, j = np.meshgrid(np.arange(size), np.arange(size), indexing="ij")
-    which = ((i + j) % 2).ravel()
-    rgba = np.ones((size * size, 4), dtype=np.float32)
-    rgba[:, :3] = np.asarray(CHECKER, dtype=np.float32)[which]
-    image = bpy.data.images.new("Checker", size, size)
-    image.pixels.foreach_set(rgba.ravel())
-    path = os.path.join(tempfile.mkdtemp(), "checker.png")
-    image.filepath_raw = path
-    image.file_format = "PNG"
-    image.save()
-    bpy.data.images.remove(image)
-    return bpy.data.images.load(path)
-
-
-def textured_material(image):
-    material = scenes.diffuse("Checker Floor", (1.0, 1.0, 1.0))
-    nodes = material.node_tree.nodes
-    texture = nodes.new("ShaderNodeTexImage")
-    texture.image = image
-    texture.interpolation = "Closest"
-    bsdf = next(n for n in nodes if n.bl_idname == "ShaderNodeBsdfDiffuse")
-    material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Color"])
-    return material
+    which = (i + j) % 2
+    return bpy.data.images.load(scenes.save_png("checker", np.asarray(CHECKER, dtype=np.float32)[which]))
 
 
 def scene(textured):
@@ -71,11 +50,9 @@ def scene(textured):
     scenes.clear_scene()
     image = checker_image()
     mean = textures.Images().load(image).mean
-    floor_material = textured_material(image) if textured else scenes.diffuse("Mean Floor", tuple(mean))
-    floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (ROOM, 0, 0), (0, ROOM, 0), CELLS, CELLS) + (0,)],
-                               [floor_material])
-    uv = floor.data.uv_layers.new(name="UVMap")
-    uv.data.foreach_set("uv", (harness.corner_positions(floor.data)[:, :2] / ROOM).astype(np.float32).ravel())
+    floor_material = (scenes.image_texture_material("Checker Floor", image, (1.0, 1.0, 1.0), "Closest") if textured
+                      else scenes.diffuse("Mean Floor", tuple(mean)))
+    floor = scenes.floor_with_uv_map(ROOM, CELLS, floor_material)
     wall = scenes.mesh_object("Wall", [scenes.grid((0, 0, 0), (0, ROOM, 0), (0, 0, ROOM), CELLS, CELLS) + (0,)],
                               [scenes.diffuse("Grey Wall", (WALL_ALBEDO,) * 3)])
     lamp = bpy.data.lights.new("Lamp", "POINT")

@@ -12,7 +12,6 @@ BSDF, read through its UV map.
 
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -42,31 +41,6 @@ def stored_texels():
                      0.45 + 0.2 * np.sin(2 * np.pi * (uu + vv))], axis=2).astype(np.float32)
 
 
-def save_png(name):
-    """The texture saved as an 8-bit sRGB PNG in a new temporary folder; returns its path."""
-    image = bpy.data.images.new(name, TEXELS, TEXELS)
-    rgba = np.ones((TEXELS, TEXELS, 4), dtype=np.float32)
-    rgba[:, :, :3] = stored_texels()
-    image.pixels.foreach_set(rgba.ravel())
-    path = os.path.join(tempfile.mkdtemp(), name + ".png")
-    image.filepath_raw = path
-    image.file_format = "PNG"
-    image.save()
-    bpy.data.images.remove(image)
-    return path
-
-
-def textured_material(name, image):
-    material = scenes.diffuse(name, (0.8, 0.8, 0.8))
-    nodes = material.node_tree.nodes
-    texture = nodes.new("ShaderNodeTexImage")
-    texture.image = image
-    texture.interpolation = "Linear"
-    bsdf = next(n for n in nodes if n.bl_idname == "ShaderNodeBsdfDiffuse")
-    material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Color"])
-    return material
-
-
 def srgb_to_linear(values):
     return np.where(values < 0.04045, np.maximum(values, 0.0) / 12.92, ((values + 0.055) / 1.055) ** 2.4)
 
@@ -89,12 +63,10 @@ def scene(material_name, png_name):
     floor's material), a grey wall standing on one edge and a point lamp above. Returns (floor,
     image, the PNG's path)."""
     scenes.clear_scene()
-    path = save_png(png_name)
+    path = scenes.save_png(png_name, stored_texels())
     image = bpy.data.images.load(path)
-    floor = scenes.mesh_object("Floor", [scenes.grid((0, 0, 0), (ROOM, 0, 0), (0, ROOM, 0), CELLS, CELLS) + (0,)],
-                               [textured_material(material_name, image)])
-    uv = floor.data.uv_layers.new(name="UVMap")
-    uv.data.foreach_set("uv", (harness.corner_positions(floor.data)[:, :2] / ROOM).astype(np.float32).ravel())
+    floor = scenes.floor_with_uv_map(ROOM, CELLS, scenes.image_texture_material(material_name, image, (0.8, 0.8, 0.8),
+                                                                                "Linear"))
     scenes.mesh_object("Wall", [scenes.grid((0, 0, 0), (0, ROOM, 0), (0, 0, ROOM), CELLS, CELLS) + (0,)],
                        [scenes.diffuse("Grey Wall", (WALL_ALBEDO,) * 3)])
     lamp = bpy.data.lights.new("Lamp", "POINT")
