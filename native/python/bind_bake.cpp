@@ -16,22 +16,40 @@ namespace radiosity::python {
 
 namespace {
 
+/// The scene `_core.plan` and `_core.bake` take: the arrays viewed as a SceneInput, with the
+/// textures it points into kept beside it (so it is neither copied nor moved).
+class TexturedScene {
+public:
+    TexturedScene(const Array<float>& positions, const Array<int32_t>& face_offsets,
+                  const Array<int32_t>& corner_vertices, const Array<float>& reflectance, const Array<float>& emission,
+                  const std::optional<Array<int32_t>>& material, const std::optional<Array<uint8_t>>& front_only,
+                  const py::object& textures)
+        : input(scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only)),
+          textures_(parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0))) {
+        if (textures_) input.textures = &textures_->view;
+    }
+    TexturedScene(const TexturedScene&) = delete;
+    TexturedScene& operator=(const TexturedScene&) = delete;
+
+    SceneInput input;
+
+private:
+    std::optional<TextureArrays> textures_;
+};
+
 py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
                      const Array<int32_t>& corner_vertices, const Array<float>& reflectance,
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
                      const py::object& progress, const py::kwargs& keywords) {
-    SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
-    const std::optional<TextureArrays> texture_arrays =
-        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
-    if (texture_arrays) input.textures = &texture_arrays->view;
+    const TexturedScene scene(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only,
+                              textures);
     const BakeSettings settings = bake_settings(keywords);
     ProgressReporter reporter(progress);
     BakeResult result;
     try {
         py::gil_scoped_release release;
-        result = bake(input, settings, reporter.function());
+        result = bake(scene.input, settings, reporter.function());
     } catch (const Cancelled&) {
         reporter.rethrow_if_failed();
         throw;
@@ -44,16 +62,13 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const Array<float>& emission, const std::optional<Array<int32_t>>& material,
                      const std::optional<Array<uint8_t>>& front_only, const py::object& textures,
                      const py::kwargs& keywords) {
-    SceneInput input =
-        scene_input(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only);
-    const std::optional<TextureArrays> texture_arrays =
-        parse_textures(textures, face_offsets.shape(0) - 1, corner_vertices.shape(0));
-    if (texture_arrays) input.textures = &texture_arrays->view;
+    const TexturedScene scene(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only,
+                              textures);
     const BakeSettings settings = bake_settings(keywords);
     BakePlan planned;
     {
         py::gil_scoped_release release;
-        planned = plan(input, settings);
+        planned = plan(scene.input, settings);
     }
     py::dict out;
     add_elements(planned.build, out);
