@@ -14,12 +14,6 @@ bool with_media(const BakeSettings& settings) { return !settings.media.media.emp
 void check(const BakeSettings& settings) {
     if (settings.hierarchical.enabled && with_media(settings))
         throw InputError("the hierarchical method does not bake media (fog, smoke) yet: use a uniform method");
-    if (settings.hierarchical.enabled && !(settings.hierarchical.refine_tolerance > 0.0))
-        throw InputError("refine_tolerance must be positive");
-    if (settings.hierarchical.enabled && !(settings.element_size > 0.0f))
-        throw InputError(
-            "element_size (the hierarchy's min_element_size: its finest elements) must be a positive "
-            "number of metres");
 }
 
 /// The hierarchy's result in bake()'s shape: the leaves are the elements.

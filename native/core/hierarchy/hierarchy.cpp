@@ -56,10 +56,12 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 void check(const HierarchySettings& s) {
-    if (!(s.min_element_size > 0.0f) || !std::isfinite(s.min_element_size))
-        throw InputError("min_element_size must be a positive number of metres");
     if (!(s.refine_tolerance > 0.0) || !std::isfinite(s.refine_tolerance))
         throw InputError("refine_tolerance must be positive");
+    if (!(s.min_element_size > 0.0f) || !std::isfinite(s.min_element_size))
+        throw InputError(
+            "element_size (the hierarchy's min_element_size: its finest elements) must be a positive number of "
+            "metres");
     if (!(s.tolerance > 0.0)) throw InputError("tolerance must be positive");
     if (s.max_iterations < 1 || s.max_rounds < 1) throw InputError("max_iterations and max_rounds must be at least 1");
     if (s.lamp_detail_levels < 0 || s.lamp_detail_levels > 8) throw InputError("lamp_detail_levels must be 0 to 8");
@@ -68,6 +70,7 @@ void check(const HierarchySettings& s) {
 }  // namespace
 
 BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings) {
+    check(settings);
     BuildResult patches = build_elements(input, 0.0f, settings.limits);
     // The hierarchy's visibility is its own (visibility/ray_tracer): lamps' quads block light there.
     patches.elements.lamp.clear();
@@ -76,7 +79,6 @@ BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& 
 
 HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings,
                                   const ProgressFn& progress) {
-    check(settings);
     HierarchyResult result;
     // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
     auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };

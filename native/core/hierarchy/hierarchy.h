@@ -98,6 +98,7 @@ struct HierarchyResult {
 
 /// The patches bake_hierarchical() starts from: one element per polygon (n-gons: convex pieces),
 /// cut along intersection and contact lines; lamps' quads block light like any patch.
+/// Throws InputError for settings out of range, as bake_hierarchical() does.
 BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings);
 
 /// Bakes `input` hierarchically. Progress phases "elements" (set-up), "links" (refinement, per
