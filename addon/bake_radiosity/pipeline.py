@@ -86,7 +86,7 @@ class BakeJob:
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
-        if self.exported.textures is not None and (self.media.media or self.method == "hierarchical"):
+        if self.exported.textures is not None and not solve.textures_baked(self.core_settings()):
             where = "with media (fog, smoke)" if self.media.media else "with the hierarchical method"
             self.warnings.append("Image textures count as their mean colour %s: bake with Method Gauss-Seidel, "
                                  "Jacobi or Progressive to see them" % where)
