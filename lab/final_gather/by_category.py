@@ -60,6 +60,7 @@ def main():
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--quality", default="MEDIUM")
     parser.add_argument("--rays", default="")
+    parser.add_argument("--field-rays", default="", help="bake the first quality again with these field rays")
     parser.add_argument("--worst", type=int, default=0)
     args = parser.parse_args(argv)
     addon = harness.install_addon(args.addon_zip)
@@ -75,11 +76,14 @@ def main():
     print("truth %s: %d seeds, noise %.3f%%" % (cached[0], len(stored["seeds"]), 100 * truth.noise()))
     auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 
-    def bake(quality, rays=None, report=True):
+    def bake(quality, rays=None, field_rays=None, report=True):
         presets = dict(auto_settings.PRESETS)
+        gathered = presets[quality].gathered
         if rays:
-            gathered = dataclasses.replace(presets[quality].gathered, rays=rays)
-            presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
+            gathered = dataclasses.replace(gathered, rays=rays)
+        if field_rays is not None:
+            gathered = dataclasses.replace(gathered, field_rays=field_rays)
+        presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
         with harness.patched_setting("PRESETS", presets), harness.Stopwatch() as seconds:
             summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality, final_gather=True)
         if not report:
@@ -90,8 +94,9 @@ def main():
                  % (name, (truth.judged & mask).sum(), 100 * truth.error(values, mask)[1],
                     100 * relative[truth.judged & mask].mean(),
                     100 * np.sum(relative[mask] ** 2) / np.sum(relative ** 2)) for name, mask in masks]
-        print("%s, %d rays, %d elements, %.2f CPU s, load %.1f: %s" % (
-            quality, summary.get("gather_rays", 0), summary["elements"], seconds.cpu, os.getloadavg()[0],
+        print("%s, %d rays, %d field rays, %d elements, %.2f CPU s, load %.1f: %s" % (
+            quality, summary.get("gather_rays", 0), gathered.field_rays, summary["elements"], seconds.cpu,
+            os.getloadavg()[0],
             "; ".join(parts)), flush=True)
         for name, mask in masks[1:]:
             for i in [i for i in np.argsort(-np.abs(relative)) if mask[i]][:args.worst]:
@@ -104,6 +109,8 @@ def main():
         bake(quality)
     for rays in filter(None, args.rays.split(",")):
         bake(qualities[0], int(rays))
+    for field_rays in filter(None, args.field_rays.split(",")):
+        bake(qualities[0], field_rays=int(field_rays))
 
 
 main()

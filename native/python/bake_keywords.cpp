@@ -84,8 +84,10 @@ void read_final_gather(KeywordReader& keywords, FinalGatherSettings& gather) {
     keywords.read("final_gather", gather.enabled);
     keywords.read("gather_rays", gather.rays);
     keywords.read("gather_shadow_rays", gather.shadow_rays);
+    keywords.read("gather_field_rays", gather.field_rays);
     if (gather.rays < 1) throw InputError("gather_rays must be >= 1");
     if (gather.shadow_rays < 1) throw InputError("gather_shadow_rays must be >= 1");
+    if (gather.field_rays < 0) throw InputError("gather_field_rays must be >= 0");
 }
 
 void read_media(KeywordReader& keywords, MediaSettings& media) {

@@ -37,6 +37,7 @@ class Gathered:
     cells: float
     near_field: bool
     rays: int           # indirect rays per output corner
+    field_rays: int = 0  # indirect rays per element vertex for the field the corners read (0: the solution)
 
 
 @dataclass(frozen=True)
@@ -67,8 +68,10 @@ class Preset:
 # read and the blocks' feet.
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
-    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True, gathered=Gathered(16, 4.0, near_field=False, rays=3136)),
-    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True, gathered=Gathered(32, 4.0, near_field=True, rays=4096)),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
+                     gathered=Gathered(16, 4.0, near_field=False, rays=3136, field_rays=64)),
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
+                   gathered=Gathered(32, 4.0, near_field=True, rays=4096, field_rays=64)),
 }
 # Custom quality's final gather.
 GATHER_RAYS = 1024
@@ -100,6 +103,7 @@ class Choice:
     resolution_reason: str      # why this resolution, in words for the summary
     near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
+    gather_field_rays: int = 0  # its rays per element vertex for the field the corners read (0: none)
     direct_emitter_area: float = 0.0  # emitting elements smaller than this light elements directly
     direct_emitters: int = 0    # how many emitting elements that is
 
@@ -110,6 +114,7 @@ class Choice:
                     "direct_emitter_area": self.direct_emitter_area}
         if self.gather_rays > 0:
             keywords["gather_rays"] = self.gather_rays
+            keywords["gather_field_rays"] = self.gather_field_rays
         if self.method == "gauss_seidel":
             keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
         return keywords
@@ -213,12 +218,12 @@ def _choose(settings, exported, media, size, preset, gathered):
         resolution = int(settings["hemicube_resolution"])
         tolerance = float(settings["tolerance"])
         refine_tolerance = float(settings["refine_tolerance"])
-        near_field, rays = False, GATHER_RAYS
+        near_field, rays, field_rays = False, GATHER_RAYS, 0
     else:
         solution = preset.gathered if gathered else preset
         element_size, tolerance = size / solution.divisions, preset.tolerance
         refine_tolerance = preset.refine_tolerance
-        near_field, rays = solution.near_field, preset.gathered.rays
+        near_field, rays, field_rays = solution.near_field, preset.gathered.rays, preset.gathered.field_rays
         # The resolution follows the solution's cells (a preset's own, or its gathered one's).
         preset = dataclasses.replace(preset, cells=solution.cells)
 
@@ -259,7 +264,7 @@ def _choose(settings, exported, media, size, preset, gathered):
                   resolution_reason=chosen.reason,
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
-                  gather_rays=rays if gathers else 0,
+                  gather_rays=rays if gathers else 0, gather_field_rays=field_rays if gathers else 0,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 

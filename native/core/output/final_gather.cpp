@@ -92,9 +92,15 @@ public:
         std::array<Vec3, 6> candidates;
         int count = 0;
         if (to_centre > 0.0f) {
-            const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
-            const bool approached = glm::dot(approach, approach) > 0.0f;
-            candidates[count++] = corner + (approached ? hair * approach : (hair / to_centre) * towards);
+            if (glm::dot(approach, approach) > 0.0f) {
+                // Where Cycles bakes an input corner (bake_offset_towards_center in Cycles' kernel):
+                // 1e-4 of the vertex's largest coordinate, at least 1e-4, along the approach.
+                const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
+                candidates[count++] = corner + std::min(to_centre, 1e-4f * largest) * approach;
+            } else {
+                const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
+                candidates[count++] = corner + (hair / to_centre) * towards;
+            }
             candidates[count++] = corner + 0.1f * towards;
             candidates[count++] = corner + 0.5f * towards;
             const Vec3 inwards = polygon_centre - corner;
@@ -295,6 +301,40 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
     return seam;
 }
 
+/// The field the output's rays read, gathered at every element vertex by `gatherer` from the
+/// interpolated solution: each vertex's direct light exact (shadow edges placed by shadow rays at
+/// the vertices, not by the hemi-cube's cells) and its indirect light from the solution one bounce
+/// further away, where the solution's error counts times the reflectance. Buried vertices keep
+/// their interpolated values.
+template <typename PolygonCentre>
+void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<int32_t>& element_at,
+                  const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
+                  const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field) {
+    std::vector<int32_t> vertices;
+    for (std::size_t v = 0; v < elements.vertices.size(); ++v)
+        if (element_at[v] >= 0) vertices.push_back(int32_t(v));
+    std::vector<Rgb> value(elements.vertices.size());
+    std::vector<uint8_t> done(elements.vertices.size(), 0);
+    parallel_rows("gather field", vertices.size(), 16, 0, progress, [&](std::size_t t) {
+        const std::size_t v = std::size_t(vertices[t]);
+        const std::size_t e = std::size_t(element_at[v]);
+        Rgb L, light, direct;
+        float seam_share = 0.0f;
+        if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
+                                 seam_share, direct, false) &&
+            std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
+            value[v] = L;
+            done[v] = 1;
+        }
+        return true;
+    });
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        for (int k = 0; k < elements.corner_count(e); ++k) {
+            const std::size_t v = std::size_t(elements.corners[e][k]);
+            if (done[v]) field[4 * e + k] = value[v];
+        }
+}
+
 /// Solves the seam points' light, each linear in the field at the seam vertices (SeamReads), by
 /// Jacobi sweeps until no value changes by more than 1e-6 of the largest (at most 200 sweeps):
 /// the same as gathering those points again and again from each other's values.
@@ -380,15 +420,21 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         return polygon_area[p] > 0.0 ? Vec3(polygon_sum[p] / polygon_area[p]) : elements.centre[e];
     };
 
-    // The first pass reads the interpolated solution. Points whose rays met a seam read the other
-    // surface's light right at it, where interpolation is least like the light (a room's corner
-    // is half lit by the walls' light at the corner): the second pass gathers them again from the
-    // first pass's values at the seams' vertices, keeping what they read at the seams as weights.
-    // Then the seams' light is solved: each of those points' light is linear in the field at the
-    // seam vertices, which are such points too (solve_seams). Passes alone converge slowly where
-    // two or three surfaces meet: a room's corner sees the other two walls' corner light in three
-    // quarters of its hemisphere.
+    // The first pass reads the interpolated solution, or the field gathered from it. Points whose rays met a seam read
+    // the other surface's light right at it, where interpolation is least like the light (a room's corner is half lit
+    // by the walls' light at the corner): the second pass gathers them again from the first pass's values at the seams'
+    // vertices, keeping what they read at the seams as weights. Then the seams' light is solved: each of those points'
+    // light is linear in the field at the seam vertices, which are such points too (solve_seams). Passes alone converge
+    // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
+    // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
+    if (settings.field_rays > 0) {
+        FinalGatherSettings field_settings = settings;
+        field_settings.rays = settings.field_rays;
+        const Gatherer gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
+                                field_settings, emitters, visibility, scene_size);
+        gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
+    }
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
     std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0);

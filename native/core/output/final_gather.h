@@ -17,9 +17,10 @@
 ///    colours blended at the hit point (smooth next to seams, where the flat element value is
 ///    not); on an emitter's back side, which has no corner colours, its solved value. Misses and
 ///    back faces bring nothing (as in the hemi-cube).
-/// The point x is the corner's element vertex moved a hair into its element (1e-3 of the way to the
-/// element's centre, at most 1e-4 of the scene's size; an input corner along its approach,
-/// corner_approach.h, as Cycles bakes it; other vertices towards the centre) and rays leave from
+/// The point x is the corner's element vertex moved a hair into its element: an input corner where
+/// Cycles bakes it, 1e-4 of the vertex's largest coordinate (at least 1e-4) along its approach
+/// (corner_approach.h); other vertices 1e-3 of the way to the element's centre, at most 1e-4 of the
+/// scene's size. Rays leave from
 /// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
 /// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
 /// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
@@ -32,6 +33,11 @@
 /// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded),
 /// so faces meeting at a vertex use the same rays and differ only where the light does, and the
 /// result does not depend on threads.
+///
+/// The field the rays read: the solution interpolated to the elements' corners or, with
+/// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at
+/// each vertex, indirect from the solution), so that the solution's error reaches the output only
+/// after one more reflection.
 ///
 /// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
 /// other surface right at the seam, where the interpolated solution is least like the light. So
@@ -62,7 +68,8 @@ struct GatherCounts {
 /// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
 /// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
-/// one unit per gathered vertex, then "gather seams" for each later pass; throws Cancelled.
+/// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
+/// each later pass; throws Cancelled.
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
                           const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                           const int32_t* material, const int32_t* face_offsets, std::size_t face_count,

@@ -10,13 +10,16 @@ namespace radiosity {
 ///  - direct: every emitting element's exact unoccluded point-to-polygon factor times the share
 ///    of it that stratified shadow rays find unhidden, plus the point, spot and sun lamps at x,
 ///    plus the world's light at x (world.h);
-///  - indirect: stratified cosine-weighted rays into the solved element radiances, each hit
-///    counting its radiance less its own emission (which direct has counted).
+///  - indirect: stratified cosine-weighted rays into the solved element radiances (or the field
+///    gathered from them at the element vertices, field_rays), each hit counting its radiance less
+///    its own emission (which direct has counted).
 /// Deterministic: the same bake twice gives bit-identical colours.
 struct FinalGatherSettings {
     bool enabled = false;
     int rays = 1024;       ///< indirect rays per corner (rounded up to a square grid)
     int shadow_rays = 64;  ///< shadow rays per corner, shared by the emitting elements it sees (at least 1 each)
+    int field_rays = 0;    ///< indirect rays per element vertex, gathered first for the corners' rays to read
+                           ///< (0: they read the solution interpolated)
 };
 
 }  // namespace radiosity
