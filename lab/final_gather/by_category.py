@@ -61,6 +61,7 @@ def main():
     parser.add_argument("--quality", default="MEDIUM")
     parser.add_argument("--rays", default="")
     parser.add_argument("--field-rays", default="", help="bake the first quality again with these field rays")
+    parser.add_argument("--shadow-rays", default="", help="bake the first quality again with these shadow rays")
     parser.add_argument("--worst", type=int, default=0)
     args = parser.parse_args(argv)
     addon = harness.install_addon(args.addon_zip)
@@ -76,13 +77,15 @@ def main():
     print("truth %s: %d seeds, noise %.3f%%" % (cached[0], len(stored["seeds"]), 100 * truth.noise()))
     auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 
-    def bake(quality, rays=None, field_rays=None, report=True):
+    def bake(quality, rays=None, field_rays=None, shadow_rays=None, report=True):
         presets = dict(auto_settings.PRESETS)
         gathered = presets[quality].gathered
         if rays:
             gathered = dataclasses.replace(gathered, rays=rays)
         if field_rays is not None:
             gathered = dataclasses.replace(gathered, field_rays=field_rays)
+        if shadow_rays is not None:
+            gathered = dataclasses.replace(gathered, shadow_rays=shadow_rays)
         presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
         with harness.patched_setting("PRESETS", presets), harness.Stopwatch() as seconds:
             summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality, final_gather=True)
@@ -94,8 +97,9 @@ def main():
                  % (name, (truth.judged & mask).sum(), 100 * truth.error(values, mask)[1],
                     100 * relative[truth.judged & mask].mean(),
                     100 * np.sum(relative[mask] ** 2) / np.sum(relative ** 2)) for name, mask in masks]
-        print("%s, %d rays, %d field rays, %d elements, %.2f CPU s, load %.1f: %s" % (
-            quality, summary.get("gather_rays", 0), gathered.field_rays, summary["elements"], seconds.cpu,
+        print("%s, %d rays, %d field rays, %d shadow rays, %d elements, %.2f CPU s, load %.1f: %s" % (
+            quality, summary.get("gather_rays", 0), gathered.field_rays, gathered.shadow_rays, summary["elements"],
+            seconds.cpu,
             os.getloadavg()[0],
             "; ".join(parts)), flush=True)
         for name, mask in masks[1:]:
@@ -111,6 +115,8 @@ def main():
         bake(qualities[0], int(rays))
     for field_rays in filter(None, args.field_rays.split(",")):
         bake(qualities[0], field_rays=int(field_rays))
+    for shadow_rays in filter(None, args.shadow_rays.split(",")):
+        bake(qualities[0], shadow_rays=int(shadow_rays))
 
 
 main()

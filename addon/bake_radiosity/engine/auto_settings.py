@@ -38,6 +38,7 @@ class Gathered:
     near_field: bool
     rays: int           # indirect rays per output corner
     field_rays: int = 0  # indirect rays per element vertex for the field the corners read (0: the solution)
+    shadow_rays: int = 64  # shadow rays per output corner, shared by the emitting elements it sees
 
 
 @dataclass(frozen=True)
@@ -69,9 +70,9 @@ class Preset:
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
-                     gathered=Gathered(16, 4.0, near_field=False, rays=3136, field_rays=64)),
+                     gathered=Gathered(16, 4.0, near_field=False, rays=3136, field_rays=64, shadow_rays=256)),
     "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
-                   gathered=Gathered(32, 4.0, near_field=True, rays=4096, field_rays=64)),
+                   gathered=Gathered(32, 4.0, near_field=True, rays=4096, field_rays=64, shadow_rays=256)),
 }
 # Custom quality's final gather.
 GATHER_RAYS = 1024
@@ -104,6 +105,7 @@ class Choice:
     near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
     gather_field_rays: int = 0  # its rays per element vertex for the field the corners read (0: none)
+    gather_shadow_rays: int = 64  # its shadow rays per output corner
     direct_emitter_area: float = 0.0  # emitting elements smaller than this light elements directly
     direct_emitters: int = 0    # how many emitting elements that is
 
@@ -115,6 +117,7 @@ class Choice:
         if self.gather_rays > 0:
             keywords["gather_rays"] = self.gather_rays
             keywords["gather_field_rays"] = self.gather_field_rays
+            keywords["gather_shadow_rays"] = self.gather_shadow_rays
         if self.method == "gauss_seidel":
             keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
         return keywords
@@ -218,12 +221,13 @@ def _choose(settings, exported, media, size, preset, gathered):
         resolution = int(settings["hemicube_resolution"])
         tolerance = float(settings["tolerance"])
         refine_tolerance = float(settings["refine_tolerance"])
-        near_field, rays, field_rays = False, GATHER_RAYS, 0
+        near_field, rays, field_rays, shadow_rays = False, GATHER_RAYS, 0, Gathered.shadow_rays
     else:
         solution = preset.gathered if gathered else preset
         element_size, tolerance = size / solution.divisions, preset.tolerance
         refine_tolerance = preset.refine_tolerance
-        near_field, rays, field_rays = solution.near_field, preset.gathered.rays, preset.gathered.field_rays
+        near_field, rays = solution.near_field, preset.gathered.rays
+        field_rays, shadow_rays = preset.gathered.field_rays, preset.gathered.shadow_rays
         # The resolution follows the solution's cells (a preset's own, or its gathered one's).
         preset = dataclasses.replace(preset, cells=solution.cells)
 
@@ -265,6 +269,7 @@ def _choose(settings, exported, media, size, preset, gathered):
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
                   gather_rays=rays if gathers else 0, gather_field_rays=field_rays if gathers else 0,
+                  gather_shadow_rays=shadow_rays,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 
