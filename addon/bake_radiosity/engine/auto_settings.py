@@ -72,7 +72,7 @@ PRESETS = {
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
                      gathered=Gathered(16, 4.0, near_field=False, rays=3136, field_rays=64, shadow_rays=256)),
     "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
-                   gathered=Gathered(32, 4.0, near_field=True, rays=4096, field_rays=64, shadow_rays=256)),
+                   gathered=Gathered(32, 4.0, near_field=True, rays=6400, field_rays=64, shadow_rays=256)),
 }
 # Custom quality's final gather.
 GATHER_RAYS = 1024
