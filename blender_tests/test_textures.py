@@ -7,9 +7,15 @@ BSDF, read through its UV map.
 - The bake agrees with Cycles' Combined bake of the same floor within the Medium preset's
   accuracy; the same floor baked with the texture's mean colour (what the bake did before it read
   textures) does not.
+- A Mapping node between the UVs and the texture (Point, Texture, Vector; fed by a Texture
+  Coordinate's UV or a UV Map node) moves the texture as Cycles moves it: the texel at each corner's
+  mapped UV (mapped here by Blender's own matrices), and Cycles' bake of the mapped floor. A
+  Mapping of type Normal, or one whose Scale nodes drive, is a warning naming the material and the
+  node; the texture then counts as its mean colour.
 - A missing image file is a warning naming the material and the file; the bake goes on with the
   Color input's own value. A mesh without a UV map is a warning naming the object."""
 
+import math
 import os
 import sys
 
@@ -17,6 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bpy  # noqa: E402
 import numpy as np  # noqa: E402
+from mathutils import Euler, Matrix, Vector  # noqa: E402
 
 import harness  # noqa: E402
 import scenes  # noqa: E402
@@ -30,6 +37,10 @@ MAX_CYCLES_NOISE = 0.01
 # The Medium preset against Cycles with its final gather: blender_test_cycles' limit for all of the
 # Cornell box's corners (relative RMS).
 MEDIUM_ACCURACY = 0.01
+# Mapping nodes as an artist sets them: (type, what feeds it, Location, Rotation, Scale).
+MAPPINGS = (("POINT", "TEX_COORD", (0.1, 0.3, 0.0), (0.3, 0.0, math.radians(30.0)), (2.0, 1.5, 1.0)),
+            ("TEXTURE", "UVMAP", (0.2, -0.1, 0.5), (0.0, 0.2, math.radians(-50.0)), (0.5, 0.8, 2.0)),
+            ("VECTOR", "UVMAP", (5.0, 5.0, 5.0), (0.0, 0.0, math.radians(90.0)), (1.0, -2.0, 1.0)))
 
 
 def stored_texels():
@@ -88,6 +99,22 @@ def relative_rms(baked, reference):
     return np.sqrt(np.mean((baked - reference) ** 2)) / np.sqrt(np.mean(reference ** 2))
 
 
+def cycles_reference(floor):
+    """The mean of two Cycles bakes of `floor` with different seeds, and its noise (relative RMS)."""
+    halves = [harness.cycles_corner_bake(floor, SAMPLES_PER_HALF, seed) for seed in (1, 2)]
+    reference = 0.5 * (halves[0] + halves[1])
+    noise = relative_rms(halves[0], reference)
+    assert noise < MAX_CYCLES_NOISE, "Cycles is too noisy to judge: %.2f%%" % (100 * noise)
+    return reference, noise
+
+
+def stored_pixels(image):
+    """The image's stored RGB (height, width, 3), bottom row first."""
+    stored = np.empty(TEXELS * TEXELS * 4, dtype=np.float32)
+    image.pixels.foreach_get(stored)
+    return stored.reshape(TEXELS, TEXELS, 4)[:, :, :3]
+
+
 def test_textured_floor_follows_the_texture_and_cycles():
     floor, image, _ = scene("Textured Floor", "Smooth")
     settings = bpy.context.scene.radiosity
@@ -97,22 +124,18 @@ def test_textured_floor_follows_the_texture_and_cycles():
     baked = harness.corner_colors(floor.data, "Radiosity")
     light = harness.corner_colors(floor.data, "Radiosity Light")
     # The image's own bytes, as Blender read them from the PNG.
-    stored = np.empty(TEXELS * TEXELS * 4, dtype=np.float32)
-    image.pixels.foreach_get(stored)
-    texel = texel_at(stored.reshape(TEXELS, TEXELS, 4)[:, :, :3], floor_uv(floor))
+    stored = stored_pixels(image)
+    texel = texel_at(stored, floor_uv(floor))
     shown = baked / light
     print("floor: texel at the corners %.4f..%.4f, baked / light %.4f..%.4f, max difference %.2e"
           % (texel.min(), texel.max(), shown.min(), shown.max(), np.abs(shown - texel).max()), flush=True)
     np.testing.assert_allclose(shown, texel, rtol=1e-4)
 
-    halves = [harness.cycles_corner_bake(floor, SAMPLES_PER_HALF, seed) for seed in (1, 2)]
-    reference = 0.5 * (halves[0] + halves[1])
-    noise = relative_rms(halves[0], reference)
-    assert noise < MAX_CYCLES_NOISE, "Cycles is too noisy to judge: %.2f%%" % (100 * noise)
+    reference, noise = cycles_reference(floor)
     error = relative_rms(baked, reference)
 
     # Before the bake read textures, the floor was its texture's mean colour everywhere.
-    mean = texel_at(stored.reshape(TEXELS, TEXELS, 4)[:, :, :3],
+    mean = texel_at(stored,
                     np.stack(np.meshgrid((np.arange(TEXELS) + 0.5) / TEXELS, (np.arange(TEXELS) + 0.5) / TEXELS),
                              axis=-1).reshape(-1, 2)).mean(axis=0)
     floor.data.materials[0] = scenes.diffuse("Mean Floor", tuple(mean))
@@ -122,6 +145,81 @@ def test_textured_floor_follows_the_texture_and_cycles():
           "limit %.2f%%" % (100 * noise, 100 * error, 100 * mean_error, 100 * MEDIUM_ACCURACY), flush=True)
     assert error < MEDIUM_ACCURACY
     assert mean_error > MEDIUM_ACCURACY
+
+
+def add_mapping(material, vector_type, feeder, location, rotation, scale):
+    """Texture Coordinate UV (feeder "TEX_COORD") or a UV Map node ("UVMAP") -> a Mapping node ->
+    the Vector of `material`'s Image Texture; returns the Mapping node."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = next(n for n in nodes if n.type == "TEX_IMAGE")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.vector_type = vector_type
+    for name, value in (("Location", location), ("Rotation", rotation), ("Scale", scale)):
+        mapping.inputs[name].default_value = value
+    if feeder == "UVMAP":
+        coordinates = nodes.new("ShaderNodeUVMap")
+        coordinates.uv_map = "UVMap"
+    else:
+        coordinates = nodes.new("ShaderNodeTexCoord")
+    links.new(coordinates.outputs["UV"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    return mapping
+
+
+def mapped_uv(uv, vector_type, location, rotation, scale):
+    """(x, y) of each (u, v, 0) through a Mapping node, by Blender's own matrices: Point is
+    T R S, Texture its inverse, Vector R S."""
+    point = Matrix.LocRotScale(Vector(location), Euler(rotation), Vector(scale))
+    matrix = {"POINT": point, "TEXTURE": point.inverted(),
+              "VECTOR": Matrix.LocRotScale(None, Euler(rotation), Vector(scale))}[vector_type]
+    return np.array([(matrix @ Vector((u, v, 0.0)))[:2] for u, v in uv])
+
+
+def test_mapping_node_moves_the_texture_as_cycles_does():
+    for vector_type, feeder, location, rotation, scale in MAPPINGS:
+        floor, image, _ = scene("Mapped Floor", "Mapped")
+        add_mapping(floor.data.materials[0], vector_type, feeder, location, rotation, scale)
+        settings = bpy.context.scene.radiosity
+        settings.quality = "MEDIUM"
+        settings.write_light_only = True
+        assert bpy.ops.radiosity.bake() == {"FINISHED"}, settings.last_report
+        baked = harness.corner_colors(floor.data, "Radiosity")
+        shown = baked / harness.corner_colors(floor.data, "Radiosity Light")
+        stored = stored_pixels(image)
+        texel = texel_at(stored, mapped_uv(floor_uv(floor), vector_type, location, rotation, scale))
+        print("Mapping %s from %s: texel at the mapped corners %.4f..%.4f, max difference %.2e"
+              % (vector_type, feeder, texel.min(), texel.max(), np.abs(shown - texel).max()), flush=True)
+        np.testing.assert_allclose(shown, texel, rtol=1e-4)
+        if vector_type != "POINT":
+            continue
+        reference, noise = cycles_reference(floor)
+        error = relative_rms(baked, reference)
+        # The same texture read at the unmapped UVs, as if the Mapping node were not there.
+        unmapped = relative_rms(baked / texel * texel_at(stored, floor_uv(floor)), reference)
+        print("mapped floor against Cycles' Combined bake (noise %.2f%%): %.2f%% RMS, read unmapped %.2f%%, limit "
+              "%.2f%%" % (100 * noise, 100 * error, 100 * unmapped, 100 * MEDIUM_ACCURACY), flush=True)
+        assert error < MEDIUM_ACCURACY
+        assert unmapped > MEDIUM_ACCURACY
+
+
+def test_unsupported_mapping_is_named():
+    floor, image, _ = scene("Normal Mapped", "Normal")
+    material = floor.data.materials[0]
+    mapping = add_mapping(material, "NORMAL", "TEX_COORD", (0, 0, 0), (0, 0, 0), (1, 1, 1))
+    mapping.name = "Bent Normals"
+    summary = addon.bake(bpy.context.scene, quality="DRAFT", write_light_only=True)
+    assert any("'Normal Mapped'" in w and "'Bent Normals'" in w for w in summary["warnings"]), summary["warnings"]
+    shown = harness.corner_colors(floor.data, "Radiosity") / harness.corner_colors(floor.data, "Radiosity Light")
+    texel_centres = (np.arange(TEXELS) + 0.5) / TEXELS
+    mean = texel_at(stored_pixels(image), np.stack(np.meshgrid(texel_centres, texel_centres), axis=-1).reshape(-1, 2))
+    np.testing.assert_allclose(shown, np.broadcast_to(mean.mean(axis=0), shown.shape), rtol=1e-4)
+
+    mapping.vector_type = "POINT"
+    value = material.node_tree.nodes.new("ShaderNodeValue")
+    material.node_tree.links.new(value.outputs["Value"], mapping.inputs["Scale"])
+    summary = addon.bake(bpy.context.scene, quality="DRAFT")
+    assert any("'Normal Mapped'" in w and "'Bent Normals'" in w and "Scale" in w for w in summary["warnings"]), \
+        summary["warnings"]
 
 
 def test_missing_image_and_uv_map_are_named():
@@ -143,4 +241,5 @@ def test_missing_image_and_uv_map_are_named():
     assert any("UV map" in w and "'Floor'" in w for w in summary["warnings"]), summary["warnings"]
 
 
-harness.run(test_textured_floor_follows_the_texture_and_cycles, test_missing_image_and_uv_map_are_named)
+harness.run(test_textured_floor_follows_the_texture_and_cycles, test_mapping_node_moves_the_texture_as_cycles_does,
+            test_unsupported_mapping_is_named, test_missing_image_and_uv_map_are_named)

@@ -24,10 +24,11 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 
 # The World's own sampling adds to the lamp's error (test_world.py); the HDRI's sun disc, 8 degrees
-# across, also softens its shadow's edge where the sun lamp's is sharp, in both bakes alike.
-# Measured: 0.54% RMS, mean +0.41%, against the sun lamp's 0.51%, +0.03%.
-WORLD_SAMPLING_RMS = 0.015
-MAX_MEAN_ERROR = 0.01
+# across, also softens its shadow's edge where the sun lamp's is sharp, and its sky and ground add
+# light the sun lamp does not give. Measured: 0.43% RMS, mean +0.10%, against the sun lamp's 0.23%,
+# +0.18% (rays spread evenly over each corner's sky give 0.56%, which this allowance refuses).
+WORLD_SAMPLING_RMS = 0.003
+MAX_MEAN_ERROR = 0.003
 
 
 def test_hdri_world_through_a_window_by_bake():

@@ -5,7 +5,7 @@ Which objects and lamps take part is what Cycles renders (visibility.py)."""
 import bpy
 import numpy as np
 
-from . import lights, materials, media_materials, preview, textures, visibility
+from . import lights, materials, media_materials, preview, textures, uv_mapping, visibility
 from .engine.scene import ExportedScene, Part
 
 # Objects made by a COPIES bake carry this property; they are output, never input.
@@ -201,11 +201,13 @@ class _Textures:
             faces = material_index == slot
             if not uses or not faces.any():
                 continue
-            uv_map = next(iter(uses.values())).uv_map
+            first = next(iter(uses.values()))
+            uv_map = first.uv_map
             for role, use in list(uses.items()):
-                if use.uv_map != uv_map:  # one UV per corner: the first role's map wins
-                    self.missing_uv.setdefault("An image texture reads another UV map than the material's other "
-                                               "texture and counts as its mean colour", []).append(object_name)
+                if not use.reads_uvs_of(first):  # one UV per corner: the first role's wins
+                    self.missing_uv.setdefault("An image texture reads other UVs (another UV map or Mapping) than the "
+                                               "material's other texture and counts as its mean colour",
+                                               []).append(object_name)
                     del uses[role]
             if uv_map not in maps:
                 maps[uv_map] = textures.corner_uvs(mesh, uv_map, order)
@@ -215,7 +217,7 @@ class _Textures:
                                            "reads the texel at UV 0, 0 there)" % which, []).append(object_name)
                 continue
             corners = faces[polygon_of_corner]
-            uv[corners] = maps[uv_map][corners]
+            uv[corners] = uv_mapping.apply(first.uv_transform, maps[uv_map][corners])
             for role, use in uses.items():
                 texture[role][faces] = self._texture_index(use)
                 scale[role][faces] = use.scale

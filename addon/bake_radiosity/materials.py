@@ -35,11 +35,15 @@ class TextureUse:
     image: textures.Image
     node: object
     uv_map: str
+    uv_transform: np.ndarray  # (2, 3): the texture reads uv_transform @ (u, v, 1) (Mapping nodes)
     scale: np.ndarray
+
+    def reads_uvs_of(self, other):
+        return self.uv_map == other.uv_map and np.array_equal(self.uv_transform, other.uv_transform)
 
     def scaled(self, factor):
         # A negative factor (a Metallic above 1) takes nothing away: the colour is clamped at 0 anyway.
-        return TextureUse(self.image, self.node, self.uv_map, np.maximum(self.scale * factor, 0.0))
+        return TextureUse(self.image, self.node, self.uv_map, self.uv_transform, np.maximum(self.scale * factor, 0.0))
 
 
 @dataclass
@@ -246,10 +250,10 @@ def _image_color(socket, node, groups, images):
     image = images.load(node.image)
     if isinstance(image, str):
         return fallback, ["%s; using the '%s' value (%.3g, %.3g, %.3g)" % (image, socket.name, *fallback)], None
-    uv_map, why_not = textures.uv_map_of(node, lambda vector: _source(vector, groups)[0])
+    uv_map, uv_transform, why_not = textures.uv_map_of(node, groups, _source)
     if uv_map is None:
         return image.mean, ["image '%s' counts as its mean colour: %s" % (image.name, why_not)], None
-    return image.mean, [], TextureUse(image, node, uv_map, np.ones(3))
+    return image.mean, [], TextureUse(image, node, uv_map, uv_transform, np.ones(3))
 
 
 def _number(socket, groups):

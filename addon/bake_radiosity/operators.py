@@ -9,7 +9,7 @@ import bpy
 
 from . import overlay, pipeline, preview, wiring
 from .engine import native
-from .engine import summary as summary_lines
+from .engine.progress_view import ProgressView
 
 _running = None  # the operator instance baking now; one bake at a time
 
@@ -85,6 +85,7 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
         self._scene_name = context.scene.name
         self._worker = _Worker(job, want_layout=job.method == "progressive")
         self._overlay = None
+        self._progress = ProgressView(job.choice.tolerance)
         self._worker.thread.start()
         wm = context.window_manager
         self._timer = wm.event_timer_add(0.2, window=context.window)
@@ -115,15 +116,13 @@ class RADIOSITY_OT_bake(bpy.types.Operator):
     def _show_progress(self, context):
         if self._worker.monitor.cancelled:
             return  # keep saying "cancelling..." until the core stops
-        info = self._worker.monitor.snapshot()
         if self._worker.layout is not None and self._overlay is None:
             self._overlay = overlay.ProgressOverlay(*self._worker.layout)
-        if info is None:
-            return
-        tolerance = self._worker.job.choice.tolerance
-        self._set_status(context, summary_lines.progress_text(info, tolerance) + " - Esc to cancel")
-        if self._overlay is not None and info.get("radiance") is not None:
-            self._overlay.show(info["radiance"])
+        text, radiance = self._progress.tick(self._worker.monitor, preview=self._overlay is not None)
+        if text is not None:
+            self._set_status(context, text + " - Esc to cancel")
+        if radiance is not None:
+            self._overlay.show(radiance)
 
     def _finish(self, context):
         worker = self._worker

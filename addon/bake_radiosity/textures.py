@@ -1,5 +1,6 @@
 """Image textures as the core reads them: each image's texels once per bake (numpy, through
-foreach_get), how the Image Texture node looks them up, and which UV map it reads.
+foreach_get), how the Image Texture node looks them up, and which UVs it reads (a UV map, through
+Mapping nodes: uv_mapping.py).
 
 Colour: `Image.pixels` gives what the image stores. For an 8-bit sRGB image that is the
 sRGB-encoded value, which Cycles blends between texels and then decodes to linear: the core is
@@ -11,6 +12,8 @@ from dataclasses import dataclass
 
 import bpy
 import numpy as np
+
+from . import uv_mapping
 
 # Colour spaces whose stored values Cycles reads without conversion.
 LINEAR_SPACES = {"Non-Color", "Raw", "Linear", "Linear Rec.709", "Linear CIE-XYZ E", "Linear ACES", "Linear ACEScg"}
@@ -80,21 +83,37 @@ def lookup(node):
     return ("closest" if node.interpolation == "Closest" else "linear"), extension
 
 
-def uv_map_of(node, source_of):
-    """The UV map an Image Texture node reads (ACTIVE_RENDER or a name), or None with the reason
-    when its Vector input is driven by something else. `source_of(socket)` follows links through
+def uv_map_of(node, groups, source_of):
+    """The UVs an Image Texture node reads: (ACTIVE_RENDER or a UV map's name, the (2, 3) affine
+    map of (u, v, 1) that Mapping nodes on the way apply, ""), or (None, None, the reason) when its
+    Vector input is driven by something else. `source_of(socket, groups)` follows links through
     reroutes and groups (materials._source)."""
     if node.projection != "FLAT":
-        return None, "its projection is %s, not Flat" % node.projection.title()
-    source = source_of(node.inputs["Vector"])
+        return None, None, "its projection is %s, not Flat" % node.projection.title()
+    transform = uv_mapping.IDENTITY
+    source, groups = source_of(node.inputs["Vector"], groups)
+    while source.is_output and source.node.type == "MAPPING":
+        mapping = source.node
+        step, why_not = uv_mapping.node_matrix(mapping, lambda socket: _value(source_of(socket, groups)[0]))
+        if step is None:
+            return None, None, why_not
+        transform = transform @ step
+        source, groups = source_of(mapping.inputs["Vector"], groups)
+        if not source.is_output:  # Cycles maps the socket's constant vector: no UVs at all
+            return None, None, "nothing drives the Vector of Mapping '%s'" % mapping.name
     if not source.is_output:
-        return ACTIVE_RENDER, ""
+        return ACTIVE_RENDER, uv_mapping.uv_transform(transform), ""
     feeder = source.node
     if feeder.type == "UVMAP":
-        return feeder.uv_map or ACTIVE_RENDER, ""
+        return feeder.uv_map or ACTIVE_RENDER, uv_mapping.uv_transform(transform), ""
     if feeder.type == "TEX_COORD" and source.name == "UV":
-        return ACTIVE_RENDER, ""
-    return None, "its Vector input is driven by '%s'" % feeder.bl_label
+        return ACTIVE_RENDER, uv_mapping.uv_transform(transform), ""
+    return None, None, "its Vector input is driven by '%s' (%s)" % (feeder.name, feeder.bl_label)
+
+
+def _value(socket):
+    """The vector of an input socket nothing drives; None for an output (nodes drive it)."""
+    return None if socket.is_output else tuple(socket.default_value)
 
 
 def corner_uvs(mesh, name, order):

@@ -14,11 +14,12 @@ ProgressFn ProgressMonitor::function() {
         residual_ = p.residual;
         radiance_.resize(p.radiance ? 3 * p.element_count : 0);
         for (std::size_t k = 0; k < radiance_.size(); ++k) radiance_[k] = static_cast<float>(p.radiance[k / 3][k % 3]);
+        ++reports_;
         return !cancelled_;
     };
 }
 
-py::object ProgressMonitor::snapshot() const {
+py::object ProgressMonitor::snapshot(bool with_radiance) const {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!reported_) return py::none();
     py::dict info;
@@ -26,7 +27,7 @@ py::object ProgressMonitor::snapshot() const {
     info["done"] = done_;
     info["total"] = total_;
     info["residual"] = residual_;
-    if (radiance_.empty()) {
+    if (!with_radiance || radiance_.empty()) {
         info["radiance"] = py::none();
     } else {
         py::array_t<float> radiance({static_cast<py::ssize_t>(radiance_.size() / 3), py::ssize_t{3}});
@@ -41,8 +42,11 @@ void bind_progress_monitor(py::module_& m) {
                                 "Pass as bake(progress=...) from a worker thread; poll snapshot() and call "
                                 "cancel() from another thread. The core never waits for the GIL to report.")
         .def(py::init<>())
-        .def("snapshot", &ProgressMonitor::snapshot,
-             "The latest report {phase, done, total, residual, radiance} or None before the first.")
+        .def("snapshot", &ProgressMonitor::snapshot, py::arg("radiance") = true,
+             "The latest report {phase, done, total, residual, radiance} or None before the first; its "
+             "radiance None unless `radiance` (a copy of every element's).")
+        .def_property_readonly("reports", &ProgressMonitor::reports,
+                               "How many reports the core has made so far (0: snapshot() is None).")
         .def("cancel", &ProgressMonitor::cancel, "Ask the core to stop; bake() then raises Cancelled.")
         .def_property_readonly("cancelled", &ProgressMonitor::cancelled);
 }

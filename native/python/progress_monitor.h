@@ -23,8 +23,11 @@ class ProgressMonitor {
 public:
     /// The core's side: stores the report, answers whether to go on. Never touches Python.
     ProgressFn function();
-    /// The latest report as the dict a progress callback receives, or None before the first.
-    py::object snapshot() const;
+    /// The latest report as the dict a progress callback receives, or None before the first;
+    /// without its radiance (None) unless `with_radiance`.
+    py::object snapshot(bool with_radiance) const;
+    /// How many reports the core has made: a poller sees whether anything changed without a snapshot.
+    std::size_t reports() const { return reports_; }
     void cancel() { cancelled_ = true; }
     bool cancelled() const { return cancelled_; }
 
@@ -35,6 +38,7 @@ private:
     std::size_t done_ = 0, total_ = 0;
     double residual_ = 0.0;
     std::vector<float> radiance_;  ///< element_count x 3, empty when the phase has none
+    std::atomic<std::size_t> reports_{0};
     std::atomic<bool> cancelled_{false};
 };
 

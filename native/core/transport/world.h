@@ -5,10 +5,10 @@
 /// Each element (and, with the final gather, each output point) receives the world's irradiance
 /// E = integral over the directions its rays escape the scene of L_world(w) cos(theta) dw, and
 /// reflects rho E / pi, which joins its emitted radiance as the lamps' first reflection does
-/// (lights.h). The integral is estimated by stratified rays traced with Embree, drawn by two
-/// strategies combined with the balance heuristic (multiple importance sampling, Veach & Guibas
-/// 1995): cosine-weighted directions, and directions drawn in proportion to the map's power
-/// (a luminance CDF over its pixels), so a small bright sun disc is found by a few rays.
+/// (lights.h). The integral is estimated by stratified rays traced with Embree (at output points,
+/// spent where the sky's edges are), drawn by two strategies combined with the balance heuristic (multiple importance
+/// sampling, Veach & Guibas 1995): cosine-weighted directions, and directions drawn in proportion to the map's power (a
+/// luminance CDF over its pixels), so a small bright sun disc is found by a few rays.
 #pragma once
 
 #include "geometry/scene.h"
@@ -26,14 +26,18 @@ struct WorldLight {
     int width = 0, height = 0;
     std::vector<Rgb> radiance;  ///< width * height, bottom row first; radiance per RGB channel
     /// Rays per element in the solve (rounded up to square grids; half of them drawn from the
-    /// map unless it is uniform), from a grid of points over the element.
+    /// map unless it is uniform), from a grid of points over the element, padded so that together
+    /// they stratify the directions as finely as one point with all of them would.
     int samples = 1024;
-    /// Rays per output point in the final gather, where the world's light is seen directly: a
-    /// point that sees the sky through a window of 3% of its cosine-weighted hemisphere needs
-    /// thousands to show it within a few percent. On a 2 m room lit through a 0.8 m window by a
-    /// uniform sky (blender_tests/test_world.py), against Cycles: 1.2% RMS at 1024 and 8192,
-    /// 1.5% at 1024 and 4096, 1.9% at 256 and 4096, 3.5% at 256 and 1024 (element and point rays).
-    int point_samples = 8192;
+    /// Rays per output point in the final gather, at most, where the world's light is seen
+    /// directly (half of them drawn from the map unless it is uniform): of the cosine's, a third
+    /// find where what the point sees of the sky has edges, a third go one to each cell of its
+    /// stratified square, and the rest to the cells on those edges (world_point.cpp). On a 2 m room lit
+    /// through a 0.8 m window by a uniform sky (blender_tests/test_world.py), against Cycles'
+    /// bake of the same room lit by an area lamp filling the window, whose own bake has 0.34%:
+    /// 0.42% RMS at 1024 and 16384 (element and point rays), 0.53% at 1024 and 8192; by plain
+    /// stratified rays, 0.91% at 1024 and 8192 (lab/world_window/measure.py).
+    int point_samples = 16384;
 
     /// A map of one pixel: the same radiance from every direction (a plain Background colour).
     static WorldLight uniform(const Rgb& radiance, int samples = 256);

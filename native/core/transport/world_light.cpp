@@ -91,10 +91,13 @@ WorldSampler::WorldSampler(const WorldLight& world) : world_(world), empty_(worl
         return std::max(1, int(std::ceil(std::sqrt(std::max(1, samples) / (uniform ? 1.0 : 2.0)) - 1e-9)));
     };
     cos_grid_ = grid(world.samples);
-    point_cos_grid_ = grid(world.point_samples);
-    if (uniform) return;
+    if (uniform) {
+        point_cos_rays_ = std::max(1, world.point_samples);
+        return;
+    }
     map_grid_ = cos_grid_;
-    point_map_grid_ = point_cos_grid_;
+    point_map_grid_ = grid(world.point_samples);
+    point_cos_rays_ = std::max(1, world.point_samples - point_map_grid_ * point_map_grid_);
     const std::size_t W = std::size_t(world.width), H = std::size_t(world.height);
     pixel_pdf_.assign(W * H, 0.0);
     pixel_cdf_.assign(W * H, 0.0);
@@ -145,36 +148,78 @@ double WorldSampler::map_pdf(const glm::dvec3& direction) const {
            (2.0 * M_PI * M_PI * sin_theta);
 }
 
-Rgb WorldSampler::irradiance(const hr::Visibility& visibility, const Vec3& origin, const Vec3& normal, uint32_t seed,
-                             int cos_grid, int map_grid) const {
+Rgb WorldSampler::irradiance(const hr::Visibility& visibility, const Vec3& origin, const Vec3& normal,
+                             const glm::dvec2* cos_uv, int cos_count, const glm::dvec2* map_uv, int map_count) const {
     Rgb sum(0.0);
     if (empty_) return sum;
-    if (map_grid_ == 0) map_grid = 0;  // a uniform map: the cosine alone is exact
+    if (map_grid_ == 0) map_count = 0;
     glm::dvec3 t, b;
     const glm::dvec3 n(normal);
     tangent_frame(n, t, b);
-    const int cos_count = cos_grid * cos_grid, map_count = map_grid * map_grid;
     for (int k = 0; k < cos_count; ++k) {
-        const double u = (double(k % cos_grid) + next_jitter(seed)) / cos_grid;
-        const double v = (double(k / cos_grid) + next_jitter(seed)) / cos_grid;
-        const glm::dvec3 w = cosine_direction(n, t, b, u, v);
-        add(visibility, origin, w, glm::dot(n, w), cos_count, map_count, sum);
+        const glm::dvec3 w = cosine_direction(n, t, b, cos_uv[k].x, cos_uv[k].y);
+        add(visibility, origin, w, glm::dot(n, w), double(cos_count), map_count, sum);
     }
     for (int k = 0; k < map_count; ++k) {
-        const double u = (double(k % map_grid) + next_jitter(seed)) / map_grid;
-        const double v = (double(k / map_grid) + next_jitter(seed)) / map_grid;
-        const glm::dvec3 w = map_direction(u, v);
-        add(visibility, origin, w, glm::dot(n, w), cos_count, map_count, sum);
+        const glm::dvec3 w = map_direction(map_uv[k].x, map_uv[k].y);
+        add(visibility, origin, w, glm::dot(n, w), double(cos_count), map_count, sum);
     }
     return sum;
 }
 
 void WorldSampler::add(const hr::Visibility& visibility, const Vec3& origin, const glm::dvec3& w, double cosine,
-                       int cos_count, int map_count, Rgb& sum) const {
+                       double cos_density, int map_count, Rgb& sum) const {
     if (!(cosine > 0.0)) return;
-    const double density = double(cos_count) * cosine / M_PI + double(map_count) * map_pdf(w);
+    const double density = cos_density * cosine / M_PI + double(map_count) * map_pdf(w);
     if (!(density > 0.0) || !visibility.clear_towards(origin, Vec3(w))) return;
     sum += world_.radiance[pixel_of(world_, w)] * (cosine / density);
+}
+
+std::vector<glm::dvec2> padded_samples(int points, int grid, uint32_t& seed) {
+    const int side = int(std::lround(std::sqrt(double(points))));
+    const int fine = grid * side;
+    std::vector<glm::dvec2> uv(std::size_t(points * grid * grid));
+    std::vector<int> sub(static_cast<std::size_t>(points));
+    for (int cell = 0; cell < grid * grid; ++cell) {
+        for (int k = 0; k < points; ++k) sub[std::size_t(k)] = k;
+        for (int k = points - 1; k > 0; --k)  // Fisher-Yates
+            std::swap(sub[std::size_t(k)], sub[std::size_t(std::min(k, int(next_jitter(seed) * float(k + 1))))]);
+        for (int k = 0; k < points; ++k) {
+            const int x = (cell % grid) * side + sub[std::size_t(k)] % side;
+            const int y = (cell / grid) * side + sub[std::size_t(k)] / side;
+            const double u = (double(x) + next_jitter(seed)) / fine, v = (double(y) + next_jitter(seed)) / fine;
+            uv[std::size_t(k * grid * grid + cell)] = {u, v};
+        }
+    }
+    return uv;
+}
+
+std::vector<glm::dvec2> multi_jittered_samples(int grid, uint32_t& seed) {
+    const std::size_t n = std::size_t(grid);
+    auto shuffled = [&]() {
+        std::vector<int> order(n);
+        for (std::size_t k = 0; k < n; ++k) order[k] = int(k);
+        for (std::size_t k = n; k > 1; --k)  // Fisher-Yates
+            std::swap(order[k - 1], order[std::min(k - 1, std::size_t(next_jitter(seed) * float(k)))]);
+        return order;
+    };
+    // The canonical arrangement: cell (i, j) holds sub-column j and sub-row i; shuffling the
+    // sub-columns within each column and the sub-rows within each row keeps both projections
+    // stratified.
+    std::vector<std::vector<int>> sub_column(n), sub_row(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        sub_column[k] = shuffled();
+        sub_row[k] = shuffled();
+    }
+    std::vector<glm::dvec2> uv(n * n);
+    const double fine = double(grid) * grid;
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t i = 0; i < n; ++i) {
+            const double u = (double(i * n + std::size_t(sub_column[i][j])) + next_jitter(seed)) / fine;
+            const double v = (double(j * n + std::size_t(sub_row[j][i])) + next_jitter(seed)) / fine;
+            uv[j * n + i] = {u, v};
+        }
+    return uv;
 }
 
 std::vector<Rgb> world_light_at_corners(const Elements& mesh, const WorldLight& world, const hr::Visibility& visibility,
@@ -228,18 +273,25 @@ std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& wo
         for (int k = 0; k < count; ++k) c[k] = elements.vertices[elements.corners[e][k]];
         const Vec3 n = elements.normal[e];
         // The mean over a grid of stratified points of the element, each with its share of the
-        // rays (stratified directions at each point: the sky's edge seen from one point is
-        // found far more closely than by rays scattered over points and directions at once).
+        // rays: stratified directions at each point (the sky's edge seen from one point is found
+        // far more closely than by rays scattered over points and directions at once), padded
+        // across the points so that together they stratify the directions as finely as all the
+        // element's rays can.
         const uint32_t seed = detail::mix_seed(uint32_t(e), 0x3011DU);
-        const int grid = points_grid(sampler.cos_grid());
-        std::vector<Vec3> points(std::size_t(grid * grid));
+        uint32_t direction_seed = detail::mix_seed(seed, 0xD1EC7U);
+        const int grid = points_grid(sampler.cos_grid()), point_count = grid * grid;
+        std::vector<Vec3> points(static_cast<std::size_t>(point_count));
         detail::stratified_points(c.data(), count, grid, seed, points.data());
         const int cos_grid = (sampler.cos_grid() + grid - 1) / grid, map_grid = (sampler.map_grid() + grid - 1) / grid;
+        const std::vector<glm::dvec2> cos_uv = detail::padded_samples(point_count, cos_grid, direction_seed);
+        const std::vector<glm::dvec2> map_uv = detail::padded_samples(point_count, map_grid, direction_seed);
+        const int cos_count = cos_grid * cos_grid, map_count = map_grid * map_grid;
         Rgb sum(0.0);
-        for (int k = 0; k < grid * grid; ++k)
+        for (int k = 0; k < point_count; ++k)
             sum += sampler.irradiance(visibility, points[std::size_t(k)] + lift * n, n,
-                                      detail::mix_seed(seed, uint32_t(k)), cos_grid, map_grid);
-        irradiance[e] = sum / double(grid * grid);
+                                      &cos_uv[std::size_t(k * cos_count)], cos_count, map_uv.data() + k * map_count,
+                                      map_count);
+        irradiance[e] = sum / double(point_count);
         return true;
     });
     return irradiance;

@@ -315,6 +315,19 @@ class ProgressMonitorTest(unittest.TestCase):
         last = monitor.snapshot()
         self.assertEqual(last["phase"], "solve")
         self.assertEqual(last["radiance"].shape, (outcome["result"]["elements"], 3))
+        self.assertIsNone(monitor.snapshot(radiance=False)["radiance"])
+        self.assertEqual(monitor.snapshot(radiance=False)["residual"], last["residual"])
+
+    def test_reports_counts_the_reports(self):
+        monitor = _core.ProgressMonitor()
+        self.assertEqual(monitor.reports, 0)
+        thread, _ = self.bake_in_thread(monitor, element_size=0.25, resolution=16)
+        thread.join(60)
+        first = monitor.reports
+        self.assertGreater(first, 1)
+        thread, _ = self.bake_in_thread(monitor, element_size=0.25, resolution=16)
+        thread.join(60)
+        self.assertEqual(monitor.reports, 2 * first)  # the same bake again makes as many reports
 
     def test_cancel_from_another_thread_while_it_holds_the_gil(self):
         monitor = _core.ProgressMonitor()
