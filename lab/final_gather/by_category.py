@@ -62,6 +62,7 @@ def main():
     parser.add_argument("--rays", default="")
     parser.add_argument("--field-rays", default="", help="bake the first quality again with these field rays")
     parser.add_argument("--shadow-rays", default="", help="bake the first quality again with these shadow rays")
+    parser.add_argument("--divisions", default="", help="bake the first quality again with these solutions' divisions")
     parser.add_argument("--worst", type=int, default=0)
     args = parser.parse_args(argv)
     addon = harness.install_addon(args.addon_zip)
@@ -77,7 +78,7 @@ def main():
     print("truth %s: %d seeds, noise %.3f%%" % (cached[0], len(stored["seeds"]), 100 * truth.noise()))
     auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 
-    def bake(quality, rays=None, field_rays=None, shadow_rays=None, report=True):
+    def bake(quality, rays=None, field_rays=None, shadow_rays=None, divisions=None, report=True):
         presets = dict(auto_settings.PRESETS)
         gathered = presets[quality].gathered
         if rays:
@@ -86,6 +87,8 @@ def main():
             gathered = dataclasses.replace(gathered, field_rays=field_rays)
         if shadow_rays is not None:
             gathered = dataclasses.replace(gathered, shadow_rays=shadow_rays)
+        if divisions is not None:
+            gathered = dataclasses.replace(gathered, divisions=divisions)
         presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
         with harness.patched_setting("PRESETS", presets), harness.Stopwatch() as seconds:
             summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality, final_gather=True)
@@ -117,6 +120,8 @@ def main():
         bake(qualities[0], field_rays=int(field_rays))
     for shadow_rays in filter(None, args.shadow_rays.split(",")):
         bake(qualities[0], shadow_rays=int(shadow_rays))
+    for divisions in filter(None, args.divisions.split(",")):
+        bake(qualities[0], divisions=int(divisions))
 
 
 main()
