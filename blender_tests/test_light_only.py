@@ -7,8 +7,9 @@ Cycles' Diffuse bake with Direct and Indirect and without Color gives it:
 - times the albedo it is exactly the radiance the add-on writes, with and without the final
   gather: on the textured floor the albedo at each corner is the checker's texel there;
 - it matches Cycles' Diffuse (Direct + Indirect, no Color) bake of the textured floor to corners.
-Wire Baked Light makes each material emit the light times its colour (Cycles' Emit bake of the wired
-wall gives its radiance back); Unwire Baked Light restores the node trees exactly."""
+Wire Baked Light makes each material emit the light times its diffuse colour as Cycles' Diffuse bake
+has it (Cycles' Emit bake of the wired wall gives its radiance back, a Principled BSDF's too);
+Unwire Baked Light restores the node trees exactly."""
 
 import importlib
 import os
@@ -35,6 +36,7 @@ MAX_CYCLES_NOISE = 0.01
 # Light-only against Cycles' Diffuse bake over the floor's corners (relative RMS), measured with Cycles'
 # noise 0.16%: 0.25% with the final gather, 1.14% interpolated from the elements.
 MAX_RELATIVE_RMS = {True: 0.01, False: 0.025}
+PRINCIPLED_METALLIC = 0.25
 
 
 def checker_image():
@@ -160,13 +162,24 @@ def tree_state(material):
 
 def emit_bake(obj):
     """Cycles' Emit bake of `obj` to corners: the emission the wired material renders."""
+    return cycles_bake(obj, "EMIT")
+
+
+def diffuse_colour_bake(obj):
+    """Cycles' Diffuse bake of `obj` to corners with Color alone: the diffuse colour Cycles
+    multiplies the light arriving on the surface by."""
+    return cycles_bake(obj, "DIFFUSE", {"COLOR"})
+
+
+def cycles_bake(obj, kind, passes=()):
+    """Cycles' `kind` bake of `obj` to corners, one sample, `passes` its pass filter."""
     harness.use_unbiased_cycles(1, 0)
     attributes = obj.data.color_attributes
-    attributes.active_color = attributes.new("Cycles Emit", "FLOAT_COLOR", "CORNER")
+    attributes.active_color = attributes.new("Cycles " + kind, "FLOAT_COLOR", "CORNER")
     select_only(obj)
-    assert bpy.ops.object.bake(type="EMIT", target="VERTEX_COLORS") == {"FINISHED"}
-    values = harness.corner_colors(obj.data, "Cycles Emit")
-    attributes.remove(attributes["Cycles Emit"])
+    assert bpy.ops.object.bake(type=kind, pass_filter=set(passes), target="VERTEX_COLORS") == {"FINISHED"}
+    values = harness.corner_colors(obj.data, "Cycles " + kind)
+    attributes.remove(attributes["Cycles " + kind])
     return values
 
 
@@ -218,20 +231,29 @@ def test_full_radiance_wiring_and_hierarchical():
 
 
 def test_wiring_a_principled_bsdf():
-    """A Principled BSDF's Base Color (here a value, no texture) multiplies the light, whose socket
-    names are the same in Blender 3.4 to 5.x."""
+    """A wired Principled BSDF emits the light times the diffuse colour Cycles gives it (its Diffuse
+    bake with Color alone): the Base Color (a value here) less its Metallic part and, from
+    Blender 4.0 on, less the albedo of the specular layer over the diffuse one. That is the wall's
+    baked radiance too."""
     floor, wall, _ = scene(textured=True)
     material = bpy.data.materials.new("Principled Wall")
     if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: materials always use nodes
         material.use_nodes = True
     bsdf = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
     bsdf.inputs["Base Color"].default_value = (WALL_ALBEDO, 0.4, 0.3, 1.0)
+    bsdf.inputs["Metallic"].default_value = PRINCIPLED_METALLIC
     wall.data.materials[0] = material
     original = tree_state(material)
+    diffuse_colour = diffuse_colour_bake(wall)
     addon.bake(bpy.context.scene, write_light_only=True, **SETTINGS)
     assert bpy.ops.radiosity.wire() == {"FINISHED"}
-    expected = harness.corner_colors(wall.data, "Radiosity Light") * (WALL_ALBEDO, 0.4, 0.3)
-    np.testing.assert_allclose(emit_bake(wall), expected, rtol=1e-3, atol=1e-5)
+    wired = emit_bake(wall)
+    expected = harness.corner_colors(wall.data, "Radiosity Light") * diffuse_colour
+    print("wired Principled BSDF (Metallic %.2f): Cycles' diffuse colour %s, emission / (light x diffuse colour) "
+          "%.5f..%.5f" % (PRINCIPLED_METALLIC, np.round(diffuse_colour.mean(axis=0), 5),
+                          (wired / expected).min(), (wired / expected).max()), flush=True)
+    np.testing.assert_allclose(wired, expected, rtol=1e-3, atol=1e-5)
+    np.testing.assert_allclose(wired, harness.corner_colors(wall.data, "Radiosity"), rtol=1e-3, atol=1e-5)
     assert bpy.ops.radiosity.unwire() == {"FINISHED"}
     assert tree_state(material) == original
 

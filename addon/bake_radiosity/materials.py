@@ -160,7 +160,7 @@ def _scaled(texture, factor):
 
 def _principled(node, groups, weight, images):
     base, problems, base_texture = _color(node.inputs["Base Color"], groups, images)
-    metallic, more = _number(node.inputs["Metallic"], groups)
+    diffuse, more = _diffuse_share(node, groups, images)
     problems += more
     transmission = node.inputs.get("Transmission") or node.inputs.get("Transmission Weight")
     if transmission is not None and (transmission.is_linked or transmission.default_value > 0.0):
@@ -171,14 +171,28 @@ def _principled(node, groups, weight, images):
     problems += more
     strength, more = _number(node.inputs["Emission Strength"], groups)
     problems += more
-    # Metals have no diffuse lobe: only the dielectric part reflects diffusely.
-    diffuse = 1.0 - metallic
-    if bpy.app.version >= (4, 0, 0):
-        layer, more = _under_specular_layer(node, groups, images)
-        diffuse, problems = diffuse * layer, problems + more
     return Surface(weight * base * diffuse, weight * emission * strength, problems,
                    reflectance_texture=_scaled(base_texture, weight * diffuse),
                    emission_texture=_scaled(emission_texture, weight * strength))
+
+
+def diffuse_share(shader):
+    """The share of the colour input of `shader`, a Principled BSDF's Base Color or a Diffuse BSDF's
+    Color, that Cycles reflects diffusely, as the bake takes it (1 for a Diffuse BSDF)."""
+    if shader.type != "BSDF_PRINCIPLED":
+        return 1.0
+    return _diffuse_share(shader, (), textures.Images())[0]
+
+
+def _diffuse_share(node, groups, images):
+    """The share of a Principled BSDF's Base Color that reflects diffusely, and problems: metals
+    have no diffuse lobe, and from Blender 4.0 on the specular layer takes its albedo off the rest."""
+    metallic, problems = _number(node.inputs["Metallic"], groups)
+    share = 1.0 - metallic
+    if bpy.app.version >= (4, 0, 0):
+        layer, more = _under_specular_layer(node, groups, images)
+        share, problems = share * layer, problems + more
+    return share, problems
 
 
 def _under_specular_layer(node, groups, images):

@@ -3,15 +3,17 @@ takes exactly that wiring out again.
 
 Each material gets a Color Attribute node reading the bake and an Emission shader in front of its
 active Material Output. With the light-only attribute, the emission is that light times the
-material's colour (whatever feeds the Base Color of a Principled BSDF or the Color of a Diffuse
-BSDF, a texture at full resolution included); with the full radiance, the emission is the
-attribute itself. The nodes added carry a name prefix, and the link they replaced is kept on the
-material, so unwiring restores the node tree as it was."""
+material's diffuse colour as Cycles' Diffuse bake has it: whatever feeds the Base Color of a
+Principled BSDF or the Color of a Diffuse BSDF (a texture at full resolution included), times the
+share of it the BSDF reflects diffusely (the Emission's Strength; materials.diffuse_share). With
+the full radiance, the emission is the attribute itself. The nodes added carry a name prefix, and
+the link they replaced is kept on the material, so unwiring restores the node tree as it was."""
 
 import json
 
 import bpy
 
+from .materials import diffuse_share
 from .writeback import light_attribute_name
 
 NODE_PREFIX = "Radiosity Wire "
@@ -114,6 +116,7 @@ def _wire_material(material, attribute_name, light_only):
         else:
             product.inputs[1].default_value = tuple(colour.default_value)[:3]
         links.new(product.outputs[0], emission.inputs["Color"])
+        emission.inputs["Strength"].default_value = diffuse_share(colour.node)
     else:
         links.new(attribute.outputs["Color"], emission.inputs["Color"])
     links.new(emission.outputs["Emission"], surface)

@@ -19,7 +19,8 @@ cd "$root"
 for file in build/packages/bake_radiosity-*-linux_x64.zip; do
   case $file in *-legacy-*) legacy=$file ;; *) extension=$file ;; esac
 done
-if [ -z "${extension:-}" ] || [ -z "${legacy:-}" ]; then echo "no packages in build/packages: run tools/build_packages.sh" >&2; exit 1; fi
+if [ "$env" = host ]; then package=${legacy:-}; else package=${extension:-}; fi
+if [ -z "$package" ]; then echo "no package for $env in build/packages: run tools/build_packages.sh" >&2; exit 1; fi
 work=$root/build/packages/demo-$env
 rm -rf "$work"; mkdir -p "$work"
 homes=(BLENDER_USER_CONFIG="$work/config" BLENDER_USER_SCRIPTS="$work/scripts" BLENDER_USER_EXTENSIONS="$work/extensions")
@@ -33,7 +34,7 @@ if [ "$env" = host ]; then
     blender -b --factory-startup "$work/cornell.blend" --python-exit-code 1 \
       --python-expr "import bake_radiosity.cli as c; c.main()" -- \
       --output "$work/cornell_baked.blend" --target COPIES --element-size 0.04 --resolution 256
-  ' sh "$root/$legacy" "$work"
+  ' sh "$root/$package" "$work"
 else
   tools/blender_chroot.sh "$env" run -- env "${homes[@]}" /bin/sh -ec '
     package=$1 work=$2
@@ -41,7 +42,7 @@ else
     blender -b --python tools/make_demo_scene.py -- "$work/cornell.blend" >/dev/null
     blender -b "$work/cornell.blend" --command bake_radiosity \
       --output "$work/cornell_baked.blend" --target COPIES --element-size 0.04 --resolution 256
-  ' sh "$root/$extension" "$work"
+  ' sh "$root/$package" "$work"
 fi
 
 render=(xvfb-run -a -s "-screen 0 1280x1024x24" blender -b "$work/cornell_baked.blend" --python tools/render_demo.py --
