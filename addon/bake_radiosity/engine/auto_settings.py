@@ -61,12 +61,14 @@ class Preset:
 # Final Gather (Lischinski, Tampieri & Greenberg 1993's local pass; the final gather of photon
 # maps): every output corner takes its direct light from each emitter and lamp at the point and its
 # indirect light from rays into the solution, corners next to seams again from the seams' gathered
-# light. The presets' gathered solutions on the Cornell box, per vertex against a deep Cycles truth
-# (docs/accuracy.md, the race; lab runs at a load of 12 to 20): Medium's 1,728 elements with 1024
-# rays 1.8%, 2048 1.5%, 3136 (56 x 56) 1.4%, 4096 1.4% in 1.3, 1.9, 2.8 and 3.5 CPU s; High's
-# 3,888 elements with near field and 4096 rays 1.4% in 7.5 s, 6,912 with cells 4 1.1% in 13 s (cells
-# 6: the same error in 17 s). Rays beyond 4096 buy little: what is left is the solution the rays
-# read and the blocks' feet.
+# light. Medium and High first gather a field at every element vertex (64 rays: exact direct light
+# at each vertex, the solution's error reaching the output only after one more reflection). The
+# presets on the Cornell box, per vertex against the 50-seed deep Cycles truth
+# (lab/final_gather/by_category.py; docs/accuracy.md, the race): Medium's 1,728 elements with 3136
+# (56 x 56) rays 1.42% before the field, 1.23% with it, 1.16% with 256 shadow rays a corner; High's
+# 6,912 elements with 4096 rays 1.13%, 1.04%, 0.95%, and 0.91% with 6400 rays; 3,888 elements
+# reach 1.06% with 4096. Draft's 256 rays are its limit: a field changes nothing there (3.85% ->
+# 3.80%).
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,

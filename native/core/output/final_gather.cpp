@@ -40,12 +40,6 @@ struct SeamReads {
     std::vector<std::pair<int32_t, double>> slots;  ///< (slot 4 e + k of the field, weight), each slot once
 };
 
-/// A point's direct light: from the emitting elements and lamps, and from the world.
-struct DirectLight {
-    Rgb local{0.0}, world{0.0};
-    Rgb total() const { return local + world; }
-};
-
 /// Each element's other side (-1: one-sided): add_back_sides appends the back sides in the order of
 /// their fronts.
 std::vector<int32_t> twins(const Elements& elements) {
@@ -65,7 +59,7 @@ public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const hr::Visibility& visibility, float scene_size, const std::vector<Rgb>* reflected_direct = nullptr)
+             const hr::Visibility& visibility, float scene_size)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -76,8 +70,7 @@ public:
           visibility_(visibility),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
-          shadow_rays_(std::max(1, settings.shadow_rays)),
-          reflected_direct_(reflected_direct) {}
+          shadow_rays_(std::max(1, settings.shadow_rays)) {}
 
     /// The radiance at element vertex `vertex` of element `e` (of a polygon centred at
     /// `polygon_centre`); false when the point is buried. `place` seeds the rays: vertices at one
@@ -86,7 +79,7 @@ public:
     /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
     /// same vertex picks the same point: the buried test does not read the solution).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
-                     Rgb& out, Rgb& light, float& seam_share, DirectLight& direct_light, bool direct_known,
+                     Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
                      SeamReads* reads = nullptr) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
@@ -124,13 +117,9 @@ public:
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
-            if (!direct_known) {
-                direct_light.local = local_direct(x, origin, n, seed, shadow_rays_);
-                if (!world_.empty())
-                    direct_light.world = world_.irradiance(visibility_, origin, n, mix_seed(seed, 0x3011DU)) / M_PI;
-            }
-            if (reads != nullptr) reads->direct = direct_light.total();
-            light = direct_light.total() + indirect;
+            if (!direct_known) direct_light = direct(x, origin, n, seed);
+            if (reads != nullptr) reads->direct = direct_light;
+            light = direct_light + indirect;
             out = emitted_[e] + elements_.reflectance[e] * light;
             return true;
         }
@@ -173,8 +162,7 @@ private:
             }
         }
         if (2 * back_near > rays) return false;
-        const Rgb correction = reflected_direct_ != nullptr ? near_correction(origin, n, t, b, seed) : Rgb(0.0);
-        out = glm::max(sum / double(rays) + correction, Rgb(0.0));
+        out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
         if (reads != nullptr) {
             std::sort(slots.begin(), slots.end());
@@ -183,7 +171,7 @@ private:
                 if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
                 reads->slots.back().second += weight / double(rays);
             }
-            reads->indirect = rest / double(rays) + correction;
+            reads->indirect = rest / double(rays);
         }
         return true;
     }
@@ -214,36 +202,8 @@ private:
         return hit;
     }
 
-    /// Where rays meet a surface closer than kNear of its element's size, the field's direct light,
-    /// interpolated between its vertices, misses what changes within the element: the wedge of
-    /// light at a vertex where a shadow's edge starts (a block's corner on a floor), a penumbra
-    /// narrower than an element. This is the mean over the hemisphere, from stratified rays of its
-    /// own, of rho (the direct light there - the field's), counted at such hits.
-    Rgb near_correction(const Vec3& origin, const glm::dvec3& n, const glm::dvec3& t, const glm::dvec3& b,
-                        uint32_t seed) const {
-        Rgb sum(0.0);
-        seed = mix_seed(seed, 0x4EA2U);
-        for (int i = 0; i < kNearGrid * kNearGrid; ++i) {
-            const double u = (double(i % kNearGrid) + next_jitter(seed)) / kNearGrid;
-            const double v = (double(i / kNearGrid) + next_jitter(seed)) / kNearGrid;
-            const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), direction);
-            if (hit.patch < 0 || elements_.is_back(std::size_t(hit.patch)) ||
-                glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f ||
-                hit.distance >= kNear * std::sqrt(elements_.area[hit.patch]))
-                continue;
-            const Rgb field = interpolated(*reflected_direct_, hit);
-            if (!std::isfinite(field.r)) continue;  // a corner left unknown (buried): nothing to correct
-            const Vec3 y = origin + hit.distance * direction, normal = elements_.normal[hit.patch];
-            const Rgb exact = local_direct(y, y + (1e-5f * scene_size_) * normal, normal, mix_seed(seed, uint32_t(i)),
-                                           kNearShadowRays);
-            sum += elements_.reflectance[hit.patch] * exact - field;
-        }
-        return sum / double(kNearGrid * kNearGrid);
-    }
-
     /// Emitting elements at x (exact unoccluded factors times their visible share) and lamps.
-    Rgb local_direct(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed, int shadow_rays) const {
+    Rgb direct(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
         const glm::dvec3 xd(x), nd(normal);
         struct Seen {
             const Emitter* emitter;
@@ -262,7 +222,7 @@ private:
         for (const Seen& s : seen) {
             const Emitter& source = *s.emitter;
             const double share = weight > 0.0 ? s.factor * max_channel(source.radiance) / weight : 0.0;
-            const int grid = std::clamp(int(std::lround(std::sqrt(shadow_rays * share))), 1, 8);
+            const int grid = std::clamp(int(std::lround(std::sqrt(shadow_rays_ * share))), 1, 8);
             std::array<Vec3, 4> c;
             for (int k = 0; k < source.count; ++k) c[k] = Vec3(source.polygon[k]);
             stratified_points(c.data(), source.count, grid, mix_seed(seed, uint32_t(source.element)), points.data());
@@ -285,6 +245,7 @@ private:
             light += source.radiance * (s.factor * share_seen);
         }
         if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
         return light;
     }
 
@@ -294,14 +255,8 @@ private:
     Rgb radiance_near(const hr::Visibility::Hit& hit) const {
         const std::size_t h = std::size_t(hit.patch);
         if (elements_.is_back(h)) return radiance_[h];  // not written, so no corner colours
-        return interpolated(corner_field_, hit);
-    }
-
-    /// `slots` (4 an element) blended at the hit.
-    Rgb interpolated(const std::vector<Rgb>& slots, const hr::Visibility::Hit& hit) const {
-        const std::size_t h = std::size_t(hit.patch);
         const double u = std::clamp(double(hit.u), 0.0, 1.0), v = std::clamp(double(hit.v), 0.0, 1.0);
-        const Rgb* c = &slots[4 * h];
+        const Rgb* c = &corner_field_[4 * h];
         if (elements_.is_triangle(h)) return (1.0 - u - v) * c[0] + u * c[1] + v * c[2];
         return (1.0 - u) * (1.0 - v) * c[0] + u * (1.0 - v) * c[1] + u * v * c[2] + (1.0 - u) * v * c[3];
     }
@@ -309,11 +264,6 @@ private:
     /// Hits this close to the point (relative to the hit element's size) are the neighbouring
     /// surface right at a seam, whose light the rays read there.
     static constexpr float kSeam = 0.01f;
-    /// Hits this close (relative to the hit element's size) get their direct light at the hit
-    /// (near_correction), from this many rays squared, each with this many shadow rays.
-    static constexpr float kNear = 2.0f;
-    static constexpr int kNearGrid = 16;
-    static constexpr int kNearShadowRays = 16;
 
     const Elements& elements_;
     std::vector<int32_t> twin_ = twins(elements_);
@@ -326,7 +276,6 @@ private:
     const hr::Visibility& visibility_;
     float scene_size_;
     int grid_, shadow_rays_;
-    const std::vector<Rgb>* reflected_direct_;  ///< rho x the field's local direct light, per slot (or none)
 };
 
 }  // namespace
@@ -356,29 +305,25 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 /// interpolated solution: each vertex's direct light exact (shadow edges placed by shadow rays at
 /// the vertices, not by the hemi-cube's cells) and its indirect light from the solution one bounce
 /// further away, where the solution's error counts times the reflectance. Buried vertices keep
-/// their interpolated values. `reflected_direct` takes rho x each gathered vertex's direct light from
-/// the emitters and lamps (what near_correction compares with; buried vertices' slots stay NaN).
+/// their interpolated values.
 template <typename PolygonCentre>
 void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<int32_t>& element_at,
                   const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
-                  const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field,
-                  std::vector<Rgb>& reflected_direct) {
+                  const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field) {
     std::vector<int32_t> vertices;
     for (std::size_t v = 0; v < elements.vertices.size(); ++v)
         if (element_at[v] >= 0) vertices.push_back(int32_t(v));
-    std::vector<Rgb> value(elements.vertices.size()), local(elements.vertices.size());
+    std::vector<Rgb> value(elements.vertices.size());
     std::vector<uint8_t> done(elements.vertices.size(), 0);
     parallel_rows("gather field", vertices.size(), 16, 0, progress, [&](std::size_t t) {
         const std::size_t v = std::size_t(vertices[t]);
         const std::size_t e = std::size_t(element_at[v]);
-        Rgb L, light;
-        DirectLight direct;
+        Rgb L, light, direct;
         float seam_share = 0.0f;
         if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
                                  seam_share, direct, false) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
-            local[v] = direct.local;
             done[v] = 1;
         }
         return true;
@@ -386,9 +331,7 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
     for (std::size_t e = 0; e < elements.size(); ++e)
         for (int k = 0; k < elements.corner_count(e); ++k) {
             const std::size_t v = std::size_t(elements.corners[e][k]);
-            if (!done[v]) continue;
-            field[4 * e + k] = value[v];
-            reflected_direct[4 * e + k] = elements.reflectance[e] * local[v];
+            if (done[v]) field[4 * e + k] = value[v];
         }
 }
 
@@ -485,20 +428,15 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
     // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
-    // With the field gathered, rho x its local direct light per slot, for near_correction.
-    std::vector<Rgb> reflected_direct;
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
                                 field_settings, emitters, visibility, scene_size);
-        reflected_direct.assign(field.size(), Rgb(std::numeric_limits<double>::quiet_NaN()));
-        gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
-                     reflected_direct);
+        gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
     }
-    const std::vector<Rgb>* near = reflected_direct.empty() ? nullptr : &reflected_direct;
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
-    std::vector<DirectLight> direct(points.size());  // each point's direct light, from the first pass
+    std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
     std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
     std::vector<SeamReads> reads(points.size());
@@ -511,17 +449,14 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         for (std::size_t e = 0; e < elements.size(); ++e)
             for (int k = 0; k < elements.corner_count(e); ++k) {
                 const int32_t i = gathered_index[elements.corners[e][k]];
-                if (i < 0) continue;
-                field[4 * e + k] = value[std::size_t(i)];
-                if (near != nullptr)
-                    reflected_direct[4 * e + k] = elements.reflectance[e] * direct[std::size_t(i)].local;
+                if (i >= 0) field[4 * e + k] = value[std::size_t(i)];
             }
     };
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
-                                visibility, scene_size, near);
+                                visibility, scene_size);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);

@@ -407,18 +407,6 @@ TEST(FinalGather, TheFieldGatheredAtTheElementsVerticesReadsExactFloorLight) {
     EXPECT_LT(case_.error(8, 64, expected), 3e-3);
 }
 
-TEST(FinalGather, RaysLandingNearThePointTakeTheDirectLightWhereTheyLand) {
-    // The sensor 5 cm up, a slab 10 cm over the floor whose penumbra is 19 cm wide around the
-    // sensor's foot: the floor's direct light changes within an element under the sensor, which
-    // neither the interpolated solution (2.1% off) nor a field gathered at the elements' vertices
-    // (7.7% off: bilinear between a lit vertex and a dark one) can show; rays that land closer
-    // than two elements take the direct light where they land (0.5% off).
-    const SensorOverShadedFloor case_{0.05, 0.1, {0.15, 1.0, -1.0, 1.0}};
-    const Rgb expected = case_.exact(0.0025);
-    EXPECT_GT(case_.error(64, 0, expected), 1.5e-2);
-    EXPECT_LT(case_.error(64, 64, expected), 1e-2);
-}
-
 TEST(FinalGather, FurnaceAtEveryCornerOfAClosedBox) {
     // Closed box, uniform E and rho: L = E / (1 - rho) everywhere, at each box corner too, where
     // three faces meet: the unoccluded factors to the other faces sum to 1, and no gather ray may
