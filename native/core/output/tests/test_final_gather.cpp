@@ -2,8 +2,8 @@
 /// @brief The uniform bake's final gather at the output corners (bake.h FinalGatherSettings):
 /// exact direct light from an emitter and from a point lamp where interpolation is far off, floor
 /// corners at a block's corner lit from the side Cycles bakes them from, the exact light on both
-/// sides of a contact line, the furnace at every corner (seams of a closed box), determinism, and
-/// cancelling.
+/// sides of a contact line, the field gathered at the elements' vertices under a coarse solution,
+/// the furnace at every corner (seams of a closed box), determinism, and cancelling.
 #include "bake/bake.h"
 
 #include "testing/test_util.h"
@@ -327,8 +327,9 @@ TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
 
 /// A 1 cm sensor (facing +x, reflecting rho_s, its centre at height h) over a floor (reflecting
 /// rho_f), a 1 m square emitter (radiance Le) 1 m over the floor at x in [1, 2], |y| < 0.5, and a
-/// black 1 mm slab with its top at height plate_z that shades part of the floor; nothing else. The floor is lit only
-/// by the emitter (the sensor's own light on it is below 2e-4 of it), so at a sensor corner P
+/// black 1 mm slab (the plate) with its top at height plate_z that shades part of the floor;
+/// nothing else. The floor is lit only by the emitter (the sensor's own light on it is below 2e-4
+/// of it), so at a sensor corner P
 ///   L(P) = rho_s [Le F_P + (1/pi) Int_floor rho_f Le F_y cos_P cos_y / r^2 dy],
 /// F_x the exact factor from x to the part of the square the plate leaves visible (the square less
 /// the plate's shadow from x on its plane, both rectangles: Lambert's contour integral), the
