@@ -154,8 +154,11 @@ def add_mapping(material, vector_type, feeder, location, rotation, scale):
     texture = next(n for n in nodes if n.type == "TEX_IMAGE")
     mapping = nodes.new("ShaderNodeMapping")
     mapping.vector_type = vector_type
+    # By identifier: Blender 5.2 does not find a socket the type hides (Vector and Normal have no
+    # Location) by its name.
+    sockets = {socket.identifier: socket for socket in mapping.inputs}
     for name, value in (("Location", location), ("Rotation", rotation), ("Scale", scale)):
-        mapping.inputs[name].default_value = value
+        sockets[name].default_value = value
     if feeder == "UVMAP":
         coordinates = nodes.new("ShaderNodeUVMap")
         coordinates.uv_map = "UVMap"
