@@ -133,6 +133,20 @@ def floor_with_uv_map(size, cells, material):
     return floor
 
 
+def wall_and_point_lamp(size, cells, albedo):
+    """Beside floor_with_uv_map's floor: a grey wall in the plane x = 0 (size x size, cells x cells
+    faces) and a 200 W point lamp of radius 0 over the floor. Returns the wall."""
+    wall = mesh_object("Wall", [grid((0, 0, 0), (0, size, 0), (0, 0, size), cells, cells) + (0,)],
+                       [diffuse("Grey Wall", (albedo,) * 3)])
+    lamp = bpy.data.lights.new("Lamp", "POINT")
+    lamp.shadow_soft_size = 0.0
+    lamp.energy = 200.0
+    lamp_object = bpy.data.objects.new("Lamp", lamp)
+    lamp_object.location = (1.2, 0.9, 1.3)
+    bpy.context.scene.collection.objects.link(lamp_object)
+    return wall
+
+
 def emission(name, color, strength):
     material = bpy.data.materials.new(name)
     material.use_nodes = True

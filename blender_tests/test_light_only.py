@@ -55,14 +55,7 @@ def scene(textured):
     floor_material = (scenes.image_texture_material("Checker Floor", image, (1.0, 1.0, 1.0), "Closest") if textured
                       else scenes.diffuse("Mean Floor", tuple(mean)))
     floor = scenes.floor_with_uv_map(ROOM, CELLS, floor_material)
-    wall = scenes.mesh_object("Wall", [scenes.grid((0, 0, 0), (0, ROOM, 0), (0, 0, ROOM), CELLS, CELLS) + (0,)],
-                              [scenes.diffuse("Grey Wall", (WALL_ALBEDO,) * 3)])
-    lamp = bpy.data.lights.new("Lamp", "POINT")
-    lamp.shadow_soft_size = 0.0
-    lamp.energy = 200.0
-    lamp_object = bpy.data.objects.new("Lamp", lamp)
-    lamp_object.location = (1.2, 0.9, 1.3)
-    bpy.context.scene.collection.objects.link(lamp_object)
+    wall = scenes.wall_and_point_lamp(ROOM, CELLS, WALL_ALBEDO)
     return floor, wall, np.float32(mean).astype(np.float64)
 
 

@@ -78,14 +78,7 @@ def scene(material_name, png_name):
     image = bpy.data.images.load(path)
     floor = scenes.floor_with_uv_map(ROOM, CELLS, scenes.image_texture_material(material_name, image, (0.8, 0.8, 0.8),
                                                                                 "Linear"))
-    scenes.mesh_object("Wall", [scenes.grid((0, 0, 0), (0, ROOM, 0), (0, 0, ROOM), CELLS, CELLS) + (0,)],
-                       [scenes.diffuse("Grey Wall", (WALL_ALBEDO,) * 3)])
-    lamp = bpy.data.lights.new("Lamp", "POINT")
-    lamp.shadow_soft_size = 0.0
-    lamp.energy = 200.0
-    lamp_object = bpy.data.objects.new("Lamp", lamp)
-    lamp_object.location = (1.2, 0.9, 1.3)
-    bpy.context.scene.collection.objects.link(lamp_object)
+    scenes.wall_and_point_lamp(ROOM, CELLS, WALL_ALBEDO)
     return floor, image, path
 
 

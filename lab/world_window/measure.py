@@ -5,7 +5,8 @@ world_point_samples keywords, patched into the add-on's call); each bake against
 the same room lit by a square area lamp filling the window (the same light seen from inside, and
 far less noisy in Cycles than the World), and against the add-on's own bake of that lamp's room.
 
-    blender -b --factory-startup --python-exit-code 1 --python lab/world_window/measure.py -- \\
+    BLENDER_USER_SCRIPTS=/tmp/world_window/scripts BLENDER_USER_CONFIG=/tmp/world_window/config \\
+      blender -b --factory-startup --python-exit-code 1 --python lab/world_window/measure.py -- \\
         --addon-zip build/bake_radiosity.zip --reference /tmp/world_window/lamp.npz \\
         --samples preset,4096x8192
 
@@ -38,10 +39,8 @@ parser.add_argument("--samples", default="preset")
 parser.add_argument("--save", help="folder for each bake's corner colours (.npy) and the corners' positions")
 args = parser.parse_args(argv)
 
-assert bpy.ops.preferences.addon_install(filepath=os.path.abspath(args.addon_zip), overwrite=True) == {"FINISHED"}
-assert bpy.ops.preferences.addon_enable(module="bake_radiosity") == {"FINISHED"}
-addon = sys.modules["bake_radiosity"]
-solve = sys.modules["bake_radiosity.engine.solve"]
+addon = harness.install_addon(args.addon_zip)
+solve = sys.modules[harness.MODULE + ".engine.solve"]
 
 scenes.clear_scene()
 room = world_scenes.room()
