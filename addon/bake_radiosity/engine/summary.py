@@ -52,6 +52,7 @@ def progress_text(info, tolerance):
         share = min(1.0, max(0.0, math.log(residual) / math.log(tolerance)))
         return "Bake Radiosity: solving %d%%, residual %.1e of %.0e" % (100 * share, info["residual"], tolerance)
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
+             "gather wedges": "light around the seams' corners",
              "gather field": "final gather at the elements' vertices", "gather": "final gather",
              "gather seams": "final gather at seams",
              "world": "world light", "textures": "texture means",

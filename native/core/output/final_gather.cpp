@@ -6,6 +6,7 @@
 #include "common/stratified.h"
 #include "geometry/weld.h"
 #include "output/corner_approach.h"
+#include "output/corner_wedges.h"
 #include "transport/lamp_points.h"
 #include "transport/near_field.h"
 #include "transport/world_light.h"
@@ -30,6 +31,8 @@ struct Emitter {
     int count;
     glm::dvec3 normal;
     Rgb radiance;
+    int32_t polygon_index;  ///< the input polygon it came from
+    double area;
 };
 
 /// What a point's rays read of the corner field right at the seams next to it (closer than kSeam
@@ -53,13 +56,33 @@ std::vector<int32_t> twins(const Elements& elements) {
     return twin;
 }
 
+/// A run of emitting elements of one polygon seen from a point (Gatherer::emitter_groups).
+struct EmitterGroup {
+    std::size_t first, last;  ///< its emitters
+    Rgb light{0.0};           ///< its exact unoccluded light at the point
+    double area = 0.0;        ///< of its elements that face the point
+};
+struct EmitterGroups {
+    std::vector<EmitterGroup> groups;
+    std::vector<double> factor;  ///< each emitter's exact unoccluded factor (0: it does not face the point)
+    double total = 0.0;          ///< the groups' light, summed over their largest channels
+};
+
+/// The direct light at a point, in parts (Gatherer::direct_at): what a nearby point's light is
+/// compared with.
+struct DirectParts {
+    EmitterGroups emitters;
+    std::vector<double> share;  ///< each group's visible share
+    Rgb lamps{0.0};
+};
+
 /// The gather at one point: its element, where it starts and what it found.
 class Gatherer {
 public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const hr::Visibility& visibility, float scene_size)
+             const hr::Visibility& visibility, float scene_size, const CornerWedges* wedges = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -68,6 +91,7 @@ public:
           world_(world),
           emitters_(emitters),
           visibility_(visibility),
+          wedges_(wedges),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -92,15 +116,7 @@ public:
         std::array<Vec3, 6> candidates;
         int count = 0;
         if (to_centre > 0.0f) {
-            if (glm::dot(approach, approach) > 0.0f) {
-                // Where Cycles bakes an input corner (bake_offset_towards_center in Cycles' kernel):
-                // 1e-4 of the vertex's largest coordinate, at least 1e-4, along the approach.
-                const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
-                candidates[count++] = corner + std::min(to_centre, 1e-4f * largest) * approach;
-            } else {
-                const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
-                candidates[count++] = corner + (hair / to_centre) * towards;
-            }
+            candidates[count++] = first_point(vertex, e, approach);
             candidates[count++] = corner + 0.1f * towards;
             candidates[count++] = corner + 0.5f * towards;
             const Vec3 inwards = polygon_centre - corner;
@@ -126,6 +142,61 @@ public:
         return false;
     }
 
+    /// The emitters' and lamps' direct light at `x`, a hair inside element `e`, in parts, seeded as
+    /// a point at `place` is.
+    DirectParts direct_at(const Vec3& x, std::size_t e, uint32_t place) const {
+        const Vec3 n = elements_.normal[e];
+        DirectParts parts{emitter_groups(x, n), {}, Rgb(0.0)};
+        for (const EmitterGroup& group : parts.emitters.groups)
+            parts.share.push_back(
+                visible_share(parts.emitters, group, x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU)));
+        if (!lights_.empty()) parts.lamps = lamp_irradiance(lights_, visibility_, x, n) / M_PI;
+        return parts;
+    }
+
+    /// How much more direct light arrives at `x`, a hair inside element `e` next to the point of
+    /// `from`, than there: the emitters' unoccluded light as at that point (so near each other it
+    /// differs only by what hides them), times the change in their visible share along the same
+    /// shadow rays, and the lamps'. The world's light is taken to be the same.
+    Rgb direct_change(const DirectParts& from, const Vec3& x, std::size_t e, uint32_t place) const {
+        const Vec3 n = elements_.normal[e];
+        Rgb change(0.0);
+        for (std::size_t g = 0; g < from.emitters.groups.size(); ++g) {
+            const EmitterGroup& group = from.emitters.groups[g];
+            if (!(max_channel(group.light) > 0.0)) continue;
+            const double share =
+                visible_share(from.emitters, group, x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU));
+            change += group.light * (share - from.share[g]);
+        }
+        if (!lights_.empty()) change += lamp_irradiance(lights_, visibility_, x, n) / M_PI - from.lamps;
+        return change;
+    }
+
+    /// The indirect light at `x`, a hair inside element `e`, along the rays of a point at `place`;
+    /// false where it is buried.
+    bool indirect_near(const Vec3& x, std::size_t e, uint32_t place, Rgb& out) const {
+        const Vec3 n = elements_.normal[e];
+        float seam_share = 0.0f;
+        return gather_indirect(x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU),
+                               glm::length(elements_.centre[e] - x), out, seam_share, nullptr);
+    }
+
+    /// Where the gather at element vertex `vertex` of element `e` starts, unless that is buried.
+    Vec3 first_point(int32_t vertex, std::size_t e, const Vec3& approach) const {
+        const Vec3 corner = elements_.vertices[vertex];
+        const Vec3 towards = elements_.centre[e] - corner;
+        const float to_centre = glm::length(towards);
+        if (!(to_centre > 0.0f)) return corner;
+        if (glm::dot(approach, approach) > 0.0f) {
+            // Where Cycles bakes an input corner (bake_offset_towards_center in Cycles' kernel):
+            // 1e-4 of the vertex's largest coordinate, at least 1e-4, along the approach.
+            const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
+            return corner + std::min(to_centre, 1e-4f * largest) * approach;
+        }
+        const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
+        return corner + (hair / to_centre) * towards;
+    }
+
 private:
     /// Mean of (radiance - own emission) over the first hits of cosine-weighted rays; false when
     /// more than half of them hit a back face nearer than `near`. `seam_share`: the share of rays
@@ -147,12 +218,13 @@ private:
             const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), direction);
             if (hit.patch < 0) continue;
             if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
-                const Rgb seen = radiance_near(hit) - emitted_[hit.patch];
+                const Rgb wedge = wedge_light(hit);
+                const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
                 sum += seen;
                 const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
-                    rest -= emitted_[hit.patch];
+                    rest += wedge - emitted_[hit.patch];
                     add_weights(hit, slots);
                 } else {
                     rest += seen;
@@ -202,32 +274,68 @@ private:
         return hit;
     }
 
-    /// Emitting elements at x (exact unoccluded factors times their visible share) and lamps.
+    /// Emitting elements at x (exact unoccluded factors times their visible share), lamps and the
+    /// world (EmitterGroups).
     Rgb direct(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        const glm::dvec3 xd(x), nd(normal);
-        struct Seen {
-            const Emitter* emitter;
-            double factor;
-        };
-        std::vector<Seen> seen;
-        double weight = 0.0;
-        for (const Emitter& source : emitters_) {
-            const double factor = point_to_polygon(xd, nd, source.polygon.data(), source.count, source.normal);
-            if (!(factor > 0.0)) continue;
-            seen.push_back({&source, factor});
-            weight += factor * max_channel(source.radiance);
-        }
+        const EmitterGroups groups = emitter_groups(x, normal);
         Rgb light(0.0);
-        std::array<Vec3, 64> points;
-        for (const Seen& s : seen) {
-            const Emitter& source = *s.emitter;
-            const double share = weight > 0.0 ? s.factor * max_channel(source.radiance) / weight : 0.0;
-            const int grid = std::clamp(int(std::lround(std::sqrt(shadow_rays_ * share))), 1, 8);
+        for (const EmitterGroup& group : groups.groups)
+            light += group.light * visible_share(groups, group, origin, normal, seed);
+        if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
+        return light;
+    }
+
+    /// Each run of emitting elements of one polygon (a group) seen from x: its exact unoccluded light
+    /// and its elements' factors.
+    EmitterGroups emitter_groups(const Vec3& x, const Vec3& normal) const {
+        const glm::dvec3 xd(x), nd(normal);
+        EmitterGroups seen;
+        seen.factor.assign(emitters_.size(), 0.0);
+        for (std::size_t i = 0; i < emitters_.size(); ++i) {
+            const Emitter& source = emitters_[i];
+            if (seen.groups.empty() || emitters_[seen.groups.back().first].polygon_index != source.polygon_index ||
+                emitters_[seen.groups.back().first].normal != source.normal)
+                seen.groups.push_back({i, i});
+            EmitterGroup& group = seen.groups.back();
+            group.last = i + 1;
+            const double f = point_to_polygon(xd, nd, source.polygon.data(), source.count, source.normal);
+            if (!(f > 0.0)) continue;
+            seen.factor[i] = f;
+            group.light += source.radiance * f;
+            group.area += source.area;
+        }
+        for (const EmitterGroup& group : seen.groups) seen.total += max_channel(group.light);
+        return seen;
+    }
+
+    /// The share of `group` that shadow rays from `origin` find unhidden. The group gets its share of
+    /// `shadow_rays` by its unoccluded light (at least one), spread over its elements by area
+    /// (systematic sampling) and stratified within each; the share is weighted by the kernel
+    /// cos cos / r^2 and the elements' radiance. So a wall split into a thousand emitting elements
+    /// costs its share of the rays, not a thousand.
+    double visible_share(const EmitterGroups& groups, const EmitterGroup& group, const Vec3& origin, const Vec3& normal,
+                         uint32_t seed) const {
+        const double weight = max_channel(group.light);
+        if (!(weight > 0.0)) return 0.0;
+        const double rays = std::max(1.0, std::round(shadow_rays_ * weight / groups.total));
+        uint32_t pick_seed = mix_seed(seed, uint32_t(emitters_[group.first].element) ^ 0x9A0BU);
+        double next_pick = next_jitter(pick_seed) * group.area / rays, covered = 0.0;
+        double visible = 0.0, seen = 0.0;
+        int clear = 0, cast = 0;
+        std::array<Vec3, 256> points;
+        for (std::size_t i = group.first; i < group.last; ++i) {
+            if (groups.factor[i] == 0.0) continue;
+            const Emitter& source = emitters_[i];
+            covered += source.area;
+            int picks = 0;
+            for (; next_pick < covered; next_pick += group.area / rays) ++picks;
+            if (picks == 0) continue;
+            const int grid = std::clamp(int(std::lround(std::sqrt(double(picks)))), 1, 16);
             std::array<Vec3, 4> c;
             for (int k = 0; k < source.count; ++k) c[k] = Vec3(source.polygon[k]);
             stratified_points(c.data(), source.count, grid, mix_seed(seed, uint32_t(source.element)), points.data());
-            double visible = 0.0, total = 0.0;
-            int clear = 0;
+            const double sample_weight = picks * max_channel(source.radiance) / double(grid * grid);
             for (int k = 0; k < grid * grid; ++k) {
                 const Vec3 d = points[k] - origin;
                 const float r2 = glm::dot(d, d);
@@ -238,15 +346,12 @@ private:
                 const bool seen_clear =
                     unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
                 clear += seen_clear;
-                total += kernel;
-                if (seen_clear) visible += kernel;
+                ++cast;
+                seen += sample_weight * kernel;
+                if (seen_clear) visible += sample_weight * kernel;
             }
-            const double share_seen = total > 0.0 ? visible / total : double(clear) / (grid * grid);
-            light += source.radiance * (s.factor * share_seen);
         }
-        if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
-        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
-        return light;
+        return seen > 0.0 ? visible / seen : cast > 0 ? double(clear) / cast : 1.0;
     }
 
     /// The solved radiance where a ray hit: the corner colours interpolation gives the element,
@@ -259,6 +364,12 @@ private:
         const Rgb* c = &corner_field_[4 * h];
         if (elements_.is_triangle(h)) return (1.0 - u - v) * c[0] + u * c[1] + v * c[2];
         return (1.0 - u) * (1.0 - v) * c[0] + u * (1.0 - v) * c[1] + u * v * c[2] + (1.0 - u) * v * c[3];
+    }
+
+    /// What the light around the hit element's corners on seams adds (corner_wedges.h).
+    Rgb wedge_light(const hr::Visibility::Hit& hit) const {
+        if (wedges_ == nullptr || wedges_->empty()) return Rgb(0.0);
+        return wedges_->correction(elements_, std::size_t(hit.patch), hit.u, hit.v);
     }
 
     /// Hits this close to the point (relative to the hit element's size) are the neighbouring
@@ -274,6 +385,7 @@ private:
     const WorldSampler& world_;
     const std::vector<Emitter>& emitters_;
     const hr::Visibility& visibility_;
+    const CornerWedges* wedges_;
     float scene_size_;
     int grid_, shadow_rays_;
 };
@@ -333,6 +445,44 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
             const std::size_t v = std::size_t(elements.corners[e][k]);
             if (done[v]) field[4 * e + k] = value[v];
         }
+}
+
+/// The light around the element corners on seams (corner_wedges.h), by `gatherer`: at each table
+/// point, how much more light arrives there than at the point the vertex is gathered at. The direct
+/// light's change along the same shadow rays (Gatherer::direct_change), the indirect light's along
+/// the same gather rays, so that what the field holds in common cancels.
+/// The indirect light turns slowly around a vertex: it is gathered at every fourth table point,
+/// linear in between.
+CornerWedges wedge_tables(const Gatherer& gatherer, const Elements& elements, const std::vector<uint8_t>& seam,
+                          const std::vector<int32_t>& place, const std::vector<int32_t>& element_at,
+                          const std::vector<Vec3>& approach, const ProgressFn& progress) {
+    constexpr int kEvery = 4, kIndirect = CornerWedges::kBins / kEvery;
+    auto fill = [&](std::size_t e, int k, const Vec3* table_points, Rgb* table) {
+        const int32_t v = elements.corners[e][k];
+        const std::size_t gathered_in = std::size_t(element_at[v]);
+        const uint32_t seed = uint32_t(place[std::size_t(v)]);
+        const Vec3 vertex_point = gatherer.first_point(v, gathered_in, approach[std::size_t(v)]);
+        const DirectParts at_vertex_direct = gatherer.direct_at(vertex_point, gathered_in, seed);
+        Rgb at_vertex(0.0), there(0.0);
+        std::array<Rgb, kIndirect> more{};
+        if (gatherer.indirect_near(vertex_point, gathered_in, seed, at_vertex))
+            for (int j = 0; j < kIndirect; ++j)
+                if (gatherer.indirect_near(table_points[kEvery * j + kEvery / 2], e, seed, there))
+                    more[std::size_t(j)] = there - at_vertex;
+        for (int i = 0; i < CornerWedges::kBins; ++i) {
+            const double position = std::clamp((i - kEvery / 2) / double(kEvery), 0.0, kIndirect - 1.0);
+            const int low = std::min(int(position), kIndirect - 2);
+            const double t = position - low;
+            table[i] = gatherer.direct_change(at_vertex_direct, table_points[i], e, seed) +
+                       (1.0 - t) * more[std::size_t(low)] + t * more[std::size_t(low + 1)];
+        }
+    };
+    return CornerWedges(elements, seam, fill, [&](std::size_t count, const auto& body) {
+        parallel_rows("gather wedges", count, 16, 0, progress, [&](std::size_t t) {
+            body(t);
+            return true;
+        });
+    });
 }
 
 /// Solves the seam points' light, each linear in the field at the seam vertices (SeamReads), by
@@ -397,7 +547,13 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     std::vector<Emitter> emitters;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;
-        Emitter source{int32_t(e), {}, elements.corner_count(e), glm::dvec3(elements.normal[e]), emitted[e]};
+        Emitter source{int32_t(e),
+                       {},
+                       elements.corner_count(e),
+                       glm::dvec3(elements.normal[e]),
+                       emitted[e],
+                       elements.polygon[e],
+                       double(elements.area[e])};
         for (int k = 0; k < source.count; ++k)
             source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
         emitters.push_back(source);
@@ -428,12 +584,25 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
     // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
-    if (settings.field_rays > 0) {
+    CornerWedges wedges;
+    {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
-        const Gatherer gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                field_settings, emitters, visibility, scene_size);
-        gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
+        if (settings.field_rays > 0) {
+            const Gatherer gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
+                                    field_settings, emitters, visibility, scene_size);
+            gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
+        }
+        // With a field: four times its rays, and a quarter of the shadow rays at each table point
+        // (along the same shadow rays as at the vertex, the change has little noise).
+        if (settings.field_rays > 0) {
+            FinalGatherSettings wedge_settings = settings;
+            wedge_settings.rays = 4 * settings.field_rays;
+            wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
+            const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings, emitters,
+                                    visibility, scene_size);
+            wedges = wedge_tables(gatherer, elements, seam, place, element_at, approach, progress);
+        }
     }
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
@@ -456,7 +625,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
-                                visibility, scene_size);
+                                visibility, scene_size, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);

@@ -39,6 +39,12 @@
 /// each vertex, indirect from the solution), so that the solution's error reaches the output only
 /// after one more reflection.
 ///
+/// Wedges: where an occluder stands on a surface, the light next to the vertex turns with the
+/// direction from it (the occluder's shadow starts there). The element corners on seams keep a
+/// table of the light around them by direction, which the rays landing in their elements read
+/// (corner_wedges.h). On the Cornell box, High: 0.91% -> 0.66% RMS per vertex, the blocks' feet
+/// 2.48% -> 1.47% (lab/final_gather/by_category.py).
+///
 /// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
 /// other surface right at the seam, where the interpolated solution is least like the light. So
 /// the vertices on seams are gathered too; the points whose rays met a seam are gathered again
@@ -48,7 +54,8 @@
 ///
 /// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
 /// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
-/// whose emitters are split into thousands of elements pays for each at every corner).
+/// whose emitters are split into thousands of elements pays for each at every corner); per element
+/// corner on a seam, 16 direct light estimates and 5 x 4 `field_rays` rays (the wedges).
 #pragma once
 
 #include "output/final_gather_settings.h"

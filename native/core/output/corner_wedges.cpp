@@ -1,0 +1,99 @@
+/// @file corner_wedges.cpp
+/// @brief Direct light tables around the element corners on seams (corner_wedges.h).
+#include "output/corner_wedges.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace radiosity::detail {
+namespace {
+
+/// Corner k's distances (a, b) along its two edges (to corner k + 1 and to corner k - 1) of the
+/// point at the ray tracer's (u, v) in element e: the weights radiance_near gives the corners.
+std::pair<double, double> along_edges(bool triangle, int k, double u, double v) {
+    if (triangle) {
+        switch (k) {
+            case 0:
+                return {u, v};
+            case 1:
+                return {v, 1.0 - u - v};
+            default:
+                return {1.0 - u - v, u};
+        }
+    }
+    switch (k) {
+        case 0:
+            return {u, v};
+        case 1:
+            return {v, 1.0 - u};
+        case 2:
+            return {1.0 - u, 1.0 - v};
+        default:
+            return {1.0 - v, u};
+    }
+}
+
+/// The weight of corner k at (u, v), as radiance_near blends the corners.
+double corner_weight(bool triangle, int k, double u, double v) {
+    if (triangle) return k == 0 ? 1.0 - u - v : k == 1 ? u : v;
+    switch (k) {
+        case 0:
+            return (1.0 - u) * (1.0 - v);
+        case 1:
+            return u * (1.0 - v);
+        case 2:
+            return u * v;
+        default:
+            return (1.0 - u) * v;
+    }
+}
+
+}  // namespace
+
+Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, double s) {
+    const int count = elements.corner_count(e);
+    const Vec3 corner = elements.vertices[std::size_t(elements.corners[e][k])];
+    const Vec3 next = elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] - corner;
+    const Vec3 previous = elements.vertices[std::size_t(elements.corners[e][(k + count - 1) % count])] - corner;
+    const double angle = s * M_PI / 2.0;
+    const Vec3 direction = glm::normalize(float(std::cos(angle)) * next + float(std::sin(angle)) * previous);
+    // As far as Cycles bakes a corner from its vertex (corner_approach.h), so that the table holds
+    // the light where the rays of a corner beside it land; at most a tenth of the shorter edge.
+    const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
+    const float hair = std::min(1e-4f * largest, 0.1f * std::min(glm::length(next), glm::length(previous)));
+    return corner + hair * direction;
+}
+
+void CornerWedges::fill(const Elements& elements, std::size_t slot, const FillTable& fill) {
+    const std::size_t e = slot / 4;
+    const int k = int(slot % 4);
+    std::array<Vec3, kBins> points;
+    for (int i = 0; i < kBins; ++i) points[std::size_t(i)] = point_at(elements, e, k, (i + 0.5) / kBins);
+    fill(e, k, points.data(), &values_[std::size_t(table_of_slot_[slot])]);
+}
+
+Rgb CornerWedges::correction(const Elements& elements, std::size_t element, float u, float v) const {
+    const bool triangle = elements.is_triangle(element);
+    const double uu = std::clamp(double(u), 0.0, 1.0), vv = std::clamp(double(v), 0.0, 1.0);
+    Rgb sum(0.0);
+    for (int k = 0; k < elements.corner_count(element); ++k) {
+        const int32_t first = table_of_slot_[4 * element + std::size_t(k)];
+        if (first < 0) continue;
+        const auto [a, b] = along_edges(triangle, k, uu, vv);
+        if (!(a + b > 0.0)) continue;  // at the vertex itself: its own value
+        // Linear between the bins' centres, the end bins' values out to the edges.
+        const double position = std::atan2(b, a) / (M_PI / 2.0) * kBins - 0.5;
+        const int low = std::clamp(int(std::floor(position)), 0, kBins - 1);
+        const int high = std::min(low + 1, kBins - 1);
+        const double t = std::clamp(position - low, 0.0, 1.0);
+        const Rgb* table = &values_[std::size_t(first)];
+        const Rgb there = (1.0 - t) * table[low] + t * table[high];
+        sum += corner_weight(triangle, k, uu, vv) * there;
+    }
+    return elements.reflectance[element] * sum;
+}
+
+}  // namespace radiosity::detail
