@@ -129,7 +129,7 @@ public:
         }
         for (int i = 0; i < count; ++i) {
             const Vec3 x = candidates[i];
-            const Vec3 origin = x + (1e-5f * scene_size_) * n;
+            const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
@@ -148,8 +148,7 @@ public:
         const Vec3 n = elements_.normal[e];
         DirectParts parts{emitter_groups(x, n), {}, Rgb(0.0)};
         for (const EmitterGroup& group : parts.emitters.groups)
-            parts.share.push_back(
-                visible_share(parts.emitters, group, x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU)));
+            parts.share.push_back(visible_share(parts.emitters, group, lifted(x, n), n, mix_seed(place, 0x5EEDU)));
         if (!lights_.empty()) parts.lamps = lamp_irradiance(lights_, visibility_, x, n) / M_PI;
         return parts;
     }
@@ -164,8 +163,7 @@ public:
         for (std::size_t g = 0; g < from.emitters.groups.size(); ++g) {
             const EmitterGroup& group = from.emitters.groups[g];
             if (!(max_channel(group.light) > 0.0)) continue;
-            const double share =
-                visible_share(from.emitters, group, x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU));
+            const double share = visible_share(from.emitters, group, lifted(x, n), n, mix_seed(place, 0x5EEDU));
             change += group.light * (share - from.share[g]);
         }
         if (!lights_.empty()) change += lamp_irradiance(lights_, visibility_, x, n) / M_PI - from.lamps;
@@ -177,8 +175,8 @@ public:
     bool indirect_near(const Vec3& x, std::size_t e, uint32_t place, Rgb& out) const {
         const Vec3 n = elements_.normal[e];
         float seam_share = 0.0f;
-        return gather_indirect(x + (1e-5f * scene_size_) * n, n, mix_seed(place, 0x5EEDU),
-                               glm::length(elements_.centre[e] - x), out, seam_share, nullptr);
+        return gather_indirect(lifted(x, n), n, mix_seed(place, 0x5EEDU), glm::length(elements_.centre[e] - x), out,
+                               seam_share, nullptr);
     }
 
     /// Where the gather at element vertex `vertex` of element `e` starts, unless that is buried.
@@ -371,6 +369,12 @@ private:
         if (wedges_ == nullptr || wedges_->empty()) return Rgb(0.0);
         return wedges_->correction(elements_, std::size_t(hit.patch), hit.u, hit.v);
     }
+
+    /// Where the rays from a point x on a surface of normal n leave.
+    Vec3 lifted(const Vec3& x, const Vec3& n) const { return x + (kLift * scene_size_) * n; }
+
+    /// How far above their point rays leave, relative to the scene's size.
+    static constexpr float kLift = 1e-6f;
 
     /// Hits this close to the point (relative to the hit element's size) are the neighbouring
     /// surface right at a seam, whose light the rays read there.

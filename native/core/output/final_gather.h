@@ -20,19 +20,17 @@
 /// The point x is the corner's element vertex moved a hair into its element: an input corner where
 /// Cycles bakes it, 1e-4 of the vertex's largest coordinate (at least 1e-4) along its approach
 /// (corner_approach.h); other vertices 1e-3 of the way to the element's centre, at most 1e-4 of the
-/// scene's size. Rays leave from
-/// 1e-5 of the scene's size above it, so they neither slip through a seam nor hit the
-/// neighbouring face at distance 0. A point inside other geometry (more than half its rays hit a
-/// back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then
-/// towards its polygon's centre (1, 2 and 4 times as far as its element's centre: the element may
-/// lie wholly under what buries it, as a floor cut along a wall's footprint), so it takes its
-/// light from the visible side; if it is still buried, it keeps the interpolated colour. Every
-/// element vertex holding an input corner is gathered once, so each face's corner has its own
-/// value: where a block stands on a floor, the floor's faces around the block's corner see it
-/// differently (as Cycles bakes them). Where a smooth surface bends, its faces' corners share
-/// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded),
-/// so faces meeting at a vertex use the same rays and differ only where the light does, and the
-/// result does not depend on threads.
+/// scene's size. Rays leave from 1e-6 of the scene's size above it, so they neither slip through a
+/// seam nor hit the neighbouring face at distance 0, yet leave from about where Cycles' rays do
+/// (next to a block's foot the point is only 4.5e-5 above the floor). A point inside other geometry (more than half its
+/// rays hit a back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then towards its
+/// polygon's centre (1, 2 and 4 times as far as its element's centre: the element may lie wholly under what buries it,
+/// as a floor cut along a wall's footprint), so it takes its light from the visible side; if it is still buried, it
+/// keeps the interpolated colour. Every element vertex holding an input corner is gathered once, so each face's corner
+/// has its own value: where a block stands on a floor, the floor's faces around the block's corner see it differently
+/// (as Cycles bakes them). Where a smooth surface bends, its faces' corners share their mean (replace_corners,
+/// interpolation.h). Seeds come from the vertex's position (welded), so faces meeting at a vertex use the same rays and
+/// differ only where the light does, and the result does not depend on threads.
 ///
 /// The field the rays read: the solution interpolated to the elements' corners or, with
 /// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at
