@@ -589,24 +589,20 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
     CornerWedges wedges;
-    {
+    if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
-        if (settings.field_rays > 0) {
-            const Gatherer gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                    field_settings, emitters, visibility, scene_size);
-            gather_field(gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
-        }
-        // With a field: four times its rays, and a quarter of the shadow rays at each table point
-        // (along the same shadow rays as at the vertex, the change has little noise).
-        if (settings.field_rays > 0) {
-            FinalGatherSettings wedge_settings = settings;
-            wedge_settings.rays = 4 * settings.field_rays;
-            wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
-            const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings, emitters,
-                                    visibility, scene_size);
-            wedges = wedge_tables(gatherer, elements, seam, place, element_at, approach, progress);
-        }
+        const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
+                                      field_settings, emitters, visibility, scene_size);
+        gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
+        // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
+        // point (along the same shadow rays as at the vertex, the change has little noise).
+        FinalGatherSettings wedge_settings = settings;
+        wedge_settings.rays = 4 * settings.field_rays;
+        wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
+        const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
+                                      emitters, visibility, scene_size);
+        wedges = wedge_tables(wedge_gatherer, elements, seam, place, element_at, approach, progress);
     }
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass

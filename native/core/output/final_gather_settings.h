@@ -19,7 +19,8 @@ struct FinalGatherSettings {
     int rays = 1024;       ///< indirect rays per corner (rounded up to a square grid)
     int shadow_rays = 64;  ///< shadow rays per corner, shared by the emitting elements it sees (at least 1 each)
     int field_rays = 0;    ///< indirect rays per element vertex, gathered first for the corners' rays to read
-                           ///< (0: they read the solution interpolated)
+                           ///< (0: they read the solution interpolated, and the corners on seams keep
+                           ///< no tables of the light around them: corner_wedges.h)
 };
 
 }  // namespace radiosity
