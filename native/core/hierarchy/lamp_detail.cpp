@@ -121,13 +121,15 @@ std::size_t split_for_lamp_light(Tree& tree, const Visibility& visibility, doubl
         if (node.is_element() && node.is_leaf() && max_channel(node.reflectance) > 0.0 && tree.can_split(node, finest))
             leaves.push_back(static_cast<int32_t>(n));
     }
+    const std::size_t first_new = tree.nodes.size();
     LampSplitter splitter(tree, visibility, threshold, finest);
     detail::parallel_rows("output", leaves.size(), 16, 0, progress, [&](std::size_t i) {
         splitter.split(leaves[i], lamp_light[leaves[i]], splitter.examine(leaves[i]));
         return true;
     });
+    const std::vector<int32_t> new_id = tree.number_in_order(first_new);
     lamp_light.resize(tree.nodes.size(), Rgb(0.0));
-    for (const auto& [node, light] : splitter.own_lamp_light) lamp_light[node] = light;
+    for (const auto& [node, light] : splitter.own_lamp_light) lamp_light[new_id[std::size_t(node) - first_new]] = light;
     return splitter.splits;
 }
 

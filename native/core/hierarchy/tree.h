@@ -204,6 +204,12 @@ public:
     /// The vertex at a - b's midpoint if an element split that edge, else -1 (after refinement).
     int32_t existing_midpoint(int32_t a, int32_t b) const;
     std::size_t leaves() const { return leaves_; }
+    /// Gives the nodes made since `first` (elements split by threads in whatever order they ran)
+    /// the ids one thread would give them: each split node's children together, split nodes
+    /// taken in the order of their ids, breadth first. Ids then depend on the scene alone, and so
+    /// does everything that follows them (the order of links, seeds). Returns each of those
+    /// nodes' new id (index: old id - first); ids held outside the nodes are the caller's to map.
+    std::vector<int32_t> number_in_order(std::size_t first);
     /// Whether a split was refused because the leaves reached the cap.
     bool cap_reached() const { return cap_reached_; }
 
