@@ -87,12 +87,17 @@ public:
         const Node& n = tree_.nodes[id];
         if (!e.departs || !tree_.can_split(n, finest_) || !tree_.subdivide(id, finest_)) return;
         ++splits;
-        const Rgb rest = n.radiance - n.reflectance * lamp;
+        // The light n gathered besides the lamps', per unit reflectance: its radiance is its
+        // emission plus its reflectance times the light gathered.
+        Rgb rest(0.0);
+        for (int ch = 0; ch < 3; ++ch)
+            if (n.reflectance[ch] > 0.0) rest[ch] = (n.radiance[ch] - n.emission[ch]) / n.reflectance[ch] - lamp[ch];
         for (int k = 0; k < n.child_count; ++k) {
             const int32_t c = child(n, k);
             const Examined own = examine(c);
             own_lamp_light.push_back({c, own.mean});
-            tree_.nodes[c].radiance = rest + tree_.nodes[c].reflectance * own.mean;
+            Node& below = tree_.nodes[c];
+            below.radiance = below.emission + below.reflectance * (rest + own.mean);
             split(c, own.mean, own);
         }
     }

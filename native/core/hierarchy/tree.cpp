@@ -202,6 +202,13 @@ void Tree::fill_element(Node& n, const Node& parent) {
     n.normal = parent.normal;
     n.reflectance = parent.reflectance;
     n.emission = parent.emission;
+    const auto polygon = std::size_t(patch_polygon[std::size_t(n.patch)]);
+    if (textures && textures->textured(polygon)) {
+        const detail::SurfaceColour colour = textures->mean(polygon, c.data(), count);
+        n.reflectance = colour.reflectance;
+        n.emission = colour.emission;
+        if (!world_light.empty()) n.emission += n.reflectance * world_light[std::size_t(n.patch)];
+    }
     n.radiance = parent.radiance;  // a warm start for the next solve
     n.area = polygon_area(c, count);
     n.centre = Vec3(0.0f);

@@ -3,6 +3,7 @@
 /// quadtree elements below them, lamps beside them, and the links each node gathers along.
 #pragma once
 
+#include "geometry/surface_textures.h"
 #include "hierarchy/hierarchy.h"
 
 #include <tbb/concurrent_vector.h>
@@ -180,7 +181,13 @@ public:
     std::vector<ClusterSplit> splits;
     std::vector<Vec3> patch_centres;     ///< per patch: Node::centre, where those walks end
     std::vector<int32_t> patch_polygon;  ///< per patch: its input polygon (Elements::polygon)
-    float scene_size = 0.0f;             ///< bounding box diagonal, metres
+    /// Image textures of the faces (null: none): an element split from a textured patch takes
+    /// its own mean colour over its part of the face, not its parent's.
+    const detail::FaceTextures* textures = nullptr;
+    /// Per patch (empty: no World): the World's light arriving, irradiance / pi, its mean over the
+    /// patch. Its first reflection is part of every element's emission (reflectance x this).
+    std::vector<Rgb> world_light;
+    float scene_size = 0.0f;  ///< bounding box diagonal, metres
     /// Points closer than this are one vertex (detail::weld_tolerance), and a point closer than
     /// this to a plane lies in it (in_plane_of).
     float weld_tolerance = 0.0f;
