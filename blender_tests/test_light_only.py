@@ -6,7 +6,8 @@ over the floor. The light-only attribute is the light arriving without the surfa
 Cycles' Diffuse bake with Direct and Indirect and without Color gives it:
 - times the albedo it is exactly the radiance the add-on writes, with and without the final
   gather: on the textured floor the albedo at each corner is the checker's texel there;
-- it matches Cycles' Diffuse (Direct + Indirect, no Color) bake of the textured floor to corners.
+- it matches Cycles' Diffuse (Direct + Indirect, no Color) bake of the textured floor to corners,
+  the hierarchical method's too.
 Wire Baked Light makes each material emit the light times its diffuse colour as Cycles' Diffuse bake
 has it (Cycles' Emit bake of the wired wall gives its radiance back, a Principled BSDF's too);
 Unwire Baked Light restores the node trees exactly."""
@@ -36,6 +37,11 @@ MAX_CYCLES_NOISE = 0.01
 # Light-only against Cycles' Diffuse bake over the floor's corners (relative RMS), measured with Cycles'
 # noise 0.16%: 0.25% with the final gather, 1.14% interpolated from the elements.
 MAX_RELATIVE_RMS = {True: 0.01, False: 0.025}
+# The hierarchical method (its light-only attribute too) against Cycles: blender_test_cycles' limit
+# for its Cornell box (relative RMS).
+HIERARCHICAL = dict(quality="CUSTOM", method="HIERARCHICAL", element_size=0.0625, refine_tolerance=0.02,
+                    tolerance=1e-4)
+HIERARCHY_ACCURACY = 0.035
 PRINCIPLED_METALLIC = 0.25
 
 
@@ -135,14 +141,17 @@ def test_light_matches_cycles_diffuse_bake():
     print("Cycles Diffuse (direct + indirect, no colour): noise %.2f%%, floor mean %.4f"
           % (100 * noise, reference.mean()), flush=True)
     assert noise < MAX_CYCLES_NOISE, "Cycles is too noisy to judge: %.2f%%" % (100 * noise)
-    for final_gather, max_relative_rms in MAX_RELATIVE_RMS.items():
-        addon.bake(bpy.context.scene, write_light_only=True, final_gather=final_gather, **SETTINGS)
+    bakes = [("final gather %s" % final_gather, dict(final_gather=final_gather, **SETTINGS), limit)
+             for final_gather, limit in MAX_RELATIVE_RMS.items()]
+    bakes.append(("hierarchical", HIERARCHICAL, HIERARCHY_ACCURACY))
+    for name, settings, max_relative_rms in bakes:
+        addon.bake(bpy.context.scene, write_light_only=True, **settings)
         light = harness.corner_colors(floor.data, "Radiosity Light")
         relative_rms = np.sqrt(np.mean((light - reference) ** 2)) / scale
         mean_error = light.mean() / reference.mean() - 1
-        print("final gather %s: light only mean %.4f, relative RMS %.2f%%, mean %+.2f%%"
-              % (final_gather, light.mean(), 100 * relative_rms, 100 * mean_error), flush=True)
-        assert relative_rms < max_relative_rms, final_gather
+        print("%s: light only mean %.4f, relative RMS %.2f%%, mean %+.2f%%, limit %.2f%%"
+              % (name, light.mean(), 100 * relative_rms, 100 * mean_error, 100 * max_relative_rms), flush=True)
+        assert relative_rms < max_relative_rms, name
 
 
 def tree_state(material):
@@ -210,12 +219,15 @@ def test_wire_and_unwire():
     assert {m.name: tree_state(m) for m in bpy.data.materials} == originals
 
 
-def test_full_radiance_wiring_and_hierarchical():
-    """Without the light-only attribute the emission is the baked radiance; the hierarchical method
-    says it has no light-only output."""
-    floor, wall, _ = scene(textured=True)
-    summary = addon.bake(bpy.context.scene, method="HIERARCHICAL", element_size=0.25, write_light_only=True)
-    assert any("Light only is not available" in w for w in summary["warnings"]), summary["warnings"]
+def test_full_radiance_wiring():
+    """Without the light-only attribute the emission is the baked radiance: Cycles' Emit bake of the
+    wired floor gives the attribute back at every corner. Cycles reads a corner 1e-4 m (times its
+    largest coordinate, when above 1 m) inside one of its triangles (bake_offset_towards_center), and
+    averages the corners around a vertex, so at a corner of a single face the read differs from the
+    corner's value by that step times the colour's slope across the face. A textured face's corners
+    show the checker's texels, a steep slope: the floor here has the texture's mean colour."""
+    floor, wall, _ = scene(textured=False)
+    addon.bake(bpy.context.scene, method="HIERARCHICAL", element_size=0.25, write_light_only=False)
     assert floor.data.color_attributes.get("Radiosity Light") is None
     assert bpy.ops.radiosity.wire() == {"FINISHED"}
     np.testing.assert_allclose(emit_bake(floor), harness.corner_colors(floor.data, "Radiosity"), rtol=1e-3,
@@ -268,5 +280,5 @@ def test_batch_option():
 
 
 harness.run(test_light_times_albedo_is_the_radiance, test_light_matches_cycles_diffuse_bake, test_wire_and_unwire,
-            test_full_radiance_wiring_and_hierarchical, test_wiring_a_principled_bsdf,
+            test_full_radiance_wiring, test_wiring_a_principled_bsdf,
             test_copies_hold_the_light_too, test_batch_option)

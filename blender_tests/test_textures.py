@@ -7,6 +7,12 @@ BSDF, read through its UV map.
 - The bake agrees with Cycles' Combined bake of the same floor within the Medium preset's
   accuracy; the same floor baked with the texture's mean colour (what the bake did before it read
   textures) does not.
+- The hierarchical method reads the texture as the uniform methods do (each element's mean for the
+  solve, the texel at each corner it writes): baked colour / light-only is the texel at each
+  corner, and the floor agrees with Cycles within the hierarchy's own accuracy against Cycles
+  (blender_test_cycles), where the texture's mean colour is far off.
+- A bake with fog reads it too: the texel at each corner, and the floor as the same scene's bake
+  without the fog has it, within what a thin fog can take from the light.
 - A Mapping node between the UVs and the texture (Point, Texture, Vector; fed by a Texture
   Coordinate's UV or a UV Map node) moves the texture as Cycles moves it: the texel at each corner's
   mapped UV (mapped here by Blender's own matrices), and Cycles' bake of the mapped floor. A
@@ -37,6 +43,13 @@ MAX_CYCLES_NOISE = 0.01
 # The Medium preset against Cycles with its final gather: blender_test_cycles' limit for all of the
 # Cornell box's corners (relative RMS).
 MEDIUM_ACCURACY = 0.01
+# The hierarchical method against Cycles: blender_test_cycles' limit for its Cornell box (relative RMS).
+HIERARCHY_ACCURACY = 0.035
+# A thin fog (Principled Volume density, per metre) in a 0.5 m cube in the floor's light.
+FOG_DENSITY = 0.05
+# The floor baked with that fog against the same bake without it: at most what the fog takes from a
+# ray along the cube's diagonal.
+FOG_EFFECT = 1.0 - math.exp(-FOG_DENSITY * 0.5 * math.sqrt(3.0))
 # Mapping nodes as an artist sets them: (type, what feeds it, Location, Rotation, Scale).
 MAPPINGS = (("POINT", "TEX_COORD", (0.1, 0.3, 0.0), (0.3, 0.0, math.radians(30.0)), (2.0, 1.5, 1.0)),
             ("TEXTURE", "UVMAP", (0.2, -0.1, 0.5), (0.0, 0.2, math.radians(-50.0)), (0.5, 0.8, 2.0)),
@@ -140,6 +153,66 @@ def test_textured_floor_follows_the_texture_and_cycles():
     assert mean_error > MEDIUM_ACCURACY
 
 
+def test_hierarchical_bake_follows_the_texture_and_cycles():
+    floor, image, _ = scene("Hierarchical Floor", "Leaves")
+    summary = addon.bake(bpy.context.scene, quality="CUSTOM", method="HIERARCHICAL", element_size=0.0625,
+                         refine_tolerance=0.02, tolerance=1e-4, write_light_only=True)
+    assert summary["method"] == "hierarchical", summary["method"]
+    assert not any("mean colour" in w for w in summary["warnings"]), summary["warnings"]
+    baked = harness.corner_colors(floor.data, "Radiosity")
+    shown = baked / harness.corner_colors(floor.data, "Radiosity Light")
+    texel = texel_at(stored_pixels(image), floor_uv(floor))
+    print("hierarchical floor: texel at the corners %.4f..%.4f, baked / light max difference %.2e"
+          % (texel.min(), texel.max(), np.abs(shown - texel).max()), flush=True)
+    np.testing.assert_allclose(shown, texel, rtol=1e-4)
+    reference, noise = cycles_reference(floor)
+    error = relative_rms(baked, reference)
+    print("hierarchical floor against Cycles' Combined bake (noise %.2f%%): %.2f%% RMS, limit %.2f%%"
+          % (100 * noise, 100 * error, 100 * HIERARCHY_ACCURACY), flush=True)
+    assert error < HIERARCHY_ACCURACY
+
+
+def panel_and_fog(with_fog):
+    """The textured floor and wall lit by a 50 cm emitting panel 1.5 m up (media are not lit by
+    point lamps), and, `with_fog`, a thin fog in a 0.5 m cube in the panel's light."""
+    floor, image, _ = scene("Foggy Floor", "Fog")
+    bpy.data.objects.remove(bpy.data.objects["Lamp"])
+    scenes.mesh_object("Panel", [scenes.grid((0.75, 0.75, 1.5), (0, 0.5, 0), (0.5, 0, 0), 1, 1) + (0,)],
+                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 20.0)])
+    if with_fog:
+        fog = scenes.fog_material("Thin Fog")
+        volume = next(n for n in fog.node_tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
+        volume.inputs["Density"].default_value = FOG_DENSITY
+        sides = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+                 ((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)),
+                 ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
+        scenes.mesh_object("Fog", [scenes.grid(np.array((1.3, 1.3, 0.5)) + 0.5 * np.array(o), 0.5 * np.array(u),
+                                               0.5 * np.array(v), 1, 1) + (0,) for o, u, v in sides], [fog])
+        bpy.context.scene.radiosity.zone_size = 0.25
+        bpy.context.scene.radiosity.media_folder = args.work + "/"
+    return floor, image
+
+
+def test_fog_bake_follows_the_texture():
+    settings = dict(quality="CUSTOM", method="GAUSS_SEIDEL", element_size=0.125, hemicube_resolution=128,
+                    tolerance=1e-6, final_gather=False)
+    floor, _ = panel_and_fog(with_fog=False)
+    addon.bake(bpy.context.scene, **settings)
+    clear = harness.corner_colors(floor.data, "Radiosity")
+    floor, image = panel_and_fog(with_fog=True)
+    summary = addon.bake(bpy.context.scene, write_light_only=True, **settings)
+    assert summary["media_files"], summary
+    assert not any("mean colour" in w for w in summary["warnings"]), summary["warnings"]
+    baked = harness.corner_colors(floor.data, "Radiosity")
+    shown = baked / harness.corner_colors(floor.data, "Radiosity Light")
+    texel = texel_at(stored_pixels(image), floor_uv(floor))
+    effect = relative_rms(baked, clear)
+    print("floor with fog: baked / light max difference from the texel %.2e; against the bake without the fog "
+          "%.3f%% RMS, limit %.2f%%" % (np.abs(shown - texel).max(), 100 * effect, 100 * FOG_EFFECT), flush=True)
+    np.testing.assert_allclose(shown, texel, rtol=1e-4)
+    assert 0.0 < effect < FOG_EFFECT
+
+
 def add_mapping(material, vector_type, feeder, location, rotation, scale):
     """Texture Coordinate UV (feeder "TEX_COORD") or a UV Map node ("UVMAP") -> a Mapping node ->
     the Vector of `material`'s Image Texture; returns the Mapping node."""
@@ -237,5 +310,6 @@ def test_missing_image_and_uv_map_are_named():
     assert any("UV map" in w and "'Floor'" in w for w in summary["warnings"]), summary["warnings"]
 
 
-harness.run(test_textured_floor_follows_the_texture_and_cycles, test_mapping_node_moves_the_texture_as_cycles_does,
+harness.run(test_textured_floor_follows_the_texture_and_cycles, test_hierarchical_bake_follows_the_texture_and_cycles,
+            test_fog_bake_follows_the_texture, test_mapping_node_moves_the_texture_as_cycles_does,
             test_unsupported_mapping_is_named, test_missing_image_and_uv_map_are_named)

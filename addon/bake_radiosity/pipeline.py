@@ -86,10 +86,6 @@ class BakeJob:
         except ValueError as error:
             raise BakeError(str(error)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
-        if self.exported.textures is not None and not solve.textures_baked(self.core_settings()):
-            where = "with media (fog, smoke)" if self.media.media else "with the hierarchical method"
-            self.warnings.append("Image textures count as their mean colour %s: bake with Method Gauss-Seidel, "
-                                 "Jacobi or Progressive to see them" % where)
         if self.world is not None and not self.world_baked():
             if self.lit_by() == "nothing":
                 raise BakeError("Only the World lights the scene, and its light is not baked with media (fog, "

@@ -110,8 +110,7 @@ class RadiositySettings(bpy.types.PropertyGroup):
         name="Also Write Light Only",
         description="Also write the light arriving without the surface's colour (irradiance / pi, as Cycles' Diffuse "
                     "bake with Direct and Indirect and without Color) into the attribute '<Attribute> Light': "
-                    "multiplied by a texture in the shader, it lights the texture at full resolution "
-                    "(not with the hierarchical method or media)",
+                    "multiplied by a texture in the shader, it lights the texture at full resolution",
         default=False,
     )
     final_gather: BoolProperty(

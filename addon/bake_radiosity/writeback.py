@@ -21,16 +21,11 @@ def write(scene, exported, result, settings):
     """Writes `result` as `settings` ask and returns warnings about what could not be written."""
     name = settings["attribute_name"]
     outputs = [(name, "corner_radiance", "element_corner_radiance")]
-    warnings = []
     if settings.get("write_light_only"):
-        if len(result.get("corner_light", ())) == len(result["corner_radiance"]):
-            outputs.append((light_attribute_name(name), "corner_light", "element_corner_light"))
-        else:
-            warnings.append("Light only is not available with the hierarchical method or with media (fog, smoke): "
-                            "only '%s' was written; bake with Method Gauss-Seidel, Jacobi or Progressive" % name)
+        outputs.append((light_attribute_name(name), "corner_light", "element_corner_light"))
     if settings["target"] == "ORIGINAL":
-        return _write_original(exported, result, outputs, settings["separate_linked_duplicates"]) + warnings
-    return _write_copies(scene, exported, result, outputs) + warnings
+        return _write_original(exported, result, outputs, settings["separate_linked_duplicates"])
+    return _write_copies(scene, exported, result, outputs)
 
 
 def set_color_attribute(mesh, name, rgb):

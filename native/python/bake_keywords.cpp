@@ -229,11 +229,9 @@ py::dict bake_result(const BakeResult& result) {
     // the lamps' first reflection (rho E / pi), reflectance is the capped input.
     out["element_emission"] = to_numpy(elements.emission);
     out["element_reflectance"] = to_numpy(elements.reflectance);
-    // The light arriving without the surface's colour (BakeResult::light_colors; the uniform bake's alone).
-    if (result.light_colors.input_corner.size() == result.colors.input_corner.size()) {
-        out["corner_light"] = to_numpy(result.light_colors.input_corner);
-        out["element_corner_light"] = element_corner_array(result.light_colors.element_corner);
-    }
+    // The light arriving without the surface's colour (BakeResult::light_colors).
+    out["corner_light"] = to_numpy(result.light_colors.input_corner);
+    out["element_corner_light"] = element_corner_array(result.light_colors.element_corner);
     out["iterations"] = result.solve.iterations;
     out["shots"] = result.solve.shots;
     out["residual"] = result.solve.residual;

@@ -123,7 +123,7 @@ void bind_bake(py::module_& m) {
           "([{origin, voxel_size, extinction, albedo, emission (nz, ny, nx, 3)}]), zone_resolution, "
           "grid_subdivision, merge_uniform_zones. The dict: the elements (as plan() gives them; the hierarchy's "
           "leaves), corner_radiance, element_corner_radiance, element_radiance, element_emission, "
-          "element_reflectance, corner_light and element_corner_light (uniform methods), iterations, shots, residual, "
+          "element_reflectance, corner_light and element_corner_light, iterations, shots, residual, "
           "residual_history, converged, matrix_stored, matrix_nonzeros, matrix_bytes, seconds per phase, "
           "final_gather and direct_emitters when they ran, hierarchy (its counts, or None), and with media zones, "
           "zones_before_merge, zone_radiance, zone_medium, zone_weight (4 K_t V), zone_emitted, zone_albedo, "

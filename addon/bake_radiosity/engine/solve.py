@@ -51,22 +51,15 @@ def core_settings(choice, settings, lights, world=None, media=()):
     return keywords
 
 
-def textures_baked(keywords):
-    """Whether a bake with `keywords` reads image textures where the light lands: the uniform
-    methods do; the hierarchy and the media bake take each face's mean colour."""
-    return keywords.get("method") != "hierarchical" and not keywords.get("media")
-
-
 def plan(scene, keywords):
     """What `_core.bake` will solve for `scene` (scene.ExportedScene) with `keywords`: its elements."""
     with core_errors_as_bake_errors():
         return native.core().plan(*scene.scene_arrays(), front_only=scene.front_only,
-                                  textures=scene.textures if textures_baked(keywords) else None, **keywords)
+                                  textures=scene.textures, **keywords)
 
 
 def bake(scene, keywords, progress=None):
     """`_core.bake` of `scene` with `keywords`; `progress`: a callback or a `_core.ProgressMonitor`."""
     with core_errors_as_bake_errors(), numerical_errors_named(scene):
         return native.core().bake(*scene.scene_arrays(), front_only=scene.front_only,
-                                  textures=scene.textures if textures_baked(keywords) else None,
-                                  progress=progress, **keywords)
+                                  textures=scene.textures, progress=progress, **keywords)

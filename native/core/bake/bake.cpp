@@ -17,8 +17,15 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// Each element's light arriving, irradiance / pi, from B = E + rho H: H = (B - E) / rho per
-/// channel, 0 where rho is 0 (BakeResult::light_colors).
+}  // namespace
+
+std::size_t matrix_bytes_bound(std::size_t element_count, int resolution) {
+    const std::size_t N = static_cast<std::size_t>(std::max(resolution, 0));
+    return element_count * std::min(element_count, 3 * N * N) * (sizeof(float) + sizeof(int32_t));
+}
+
+namespace detail {
+
 std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>& radiance,
                                 const std::vector<Rgb>& emitted) {
     std::vector<Rgb> light(elements.size(), Rgb(0.0));
@@ -28,15 +35,6 @@ std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>
                 light[e][c] = std::max(0.0, (radiance[e][c] - emitted[e][c]) / elements.reflectance[e][c]);
     return light;
 }
-
-}  // namespace
-
-std::size_t matrix_bytes_bound(std::size_t element_count, int resolution) {
-    const std::size_t N = static_cast<std::size_t>(std::max(resolution, 0));
-    return element_count * std::min(element_count, 3 * N * N) * (sizeof(float) + sizeof(int32_t));
-}
-
-namespace detail {
 
 bool stores_matrix(std::size_t element_count, const BakeSettings& settings) {
     const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;

@@ -116,6 +116,7 @@ struct BakeResult {
     /// each element's (radiance - own emission) / reflectance, and is 0 in a channel whose
     /// reflectance is 0 (such a surface reflects nothing there, whatever light arrives); with the
     /// gather, the gathered output corners hold the light the gather found, whatever the colour.
+    /// The hierarchy's adds, at each corner, the light its lamps, World and links bring there.
     CornerColors light_colors;
     bool matrix_stored = false;       ///< F stored (exact system) or rows rendered on demand
     std::size_t matrix_nonzeros = 0;  ///< 0 when rows were rendered on demand

@@ -3,6 +3,7 @@
 #include "bake/media_bake.h"
 
 #include "bake/pipelines.h"
+#include "geometry/surface_textures.h"
 #include "media/zonal_solver.h"
 
 #include <chrono>
@@ -60,6 +61,11 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
 
     start = Clock::now();
     bake.colors = interpolate_corners(elements, bake.solve.radiance, input.material, settings.hard_edge_angle);
+    bake.light_colors =
+        interpolate_corners(elements, detail::light_arriving(elements, bake.solve.radiance, elements.emission),
+                            input.material, settings.hard_edge_angle);
+    // Textured faces show their texel at each corner, lit by the light arriving there.
+    if (input.textures) detail::texture_corners(input, elements, bake.light_colors, bake.colors);
     bake.seconds_interpolate = seconds_since(start);
 
     for (std::size_t i = 0; i < media.size(); ++i)

@@ -15,6 +15,11 @@ BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settin
 /// blocking like any emitter (front-only still).
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings);
 
+/// Each element's light arriving, irradiance / pi, from B = E + rho H: H = (B - E) / rho per
+/// channel, 0 where rho is 0 (BakeResult::light_colors). `emitted`: the elements' own emission.
+std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>& radiance,
+                                const std::vector<Rgb>& emitted);
+
 /// The hierarchy's settings from the bake's (bake.h's HierarchicalSettings says which it takes).
 HierarchySettings hierarchy_settings(const BakeSettings& settings);
 

@@ -27,6 +27,7 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     result.solve.converged = hierarchy.converged;
     result.solve.seconds = hierarchy.seconds_solve;
     result.colors = std::move(hierarchy.colors);
+    result.light_colors = std::move(hierarchy.light_colors);
     result.matrix_bytes = hierarchy.stats.bytes;
     result.seconds_elements = hierarchy.seconds_elements;
     result.seconds_form_factors = hierarchy.seconds_links;  // lamps are link sources: no lamp phase

@@ -17,7 +17,6 @@
 #include <memory>
 
 namespace radiosity::detail {
-namespace {
 
 using UV = glm::dvec2;
 
@@ -79,18 +78,11 @@ private:
     std::vector<Triangle> triangles_;
 };
 
-/// An image and its box-filtered halvings, made as far down as some element needs.
+/// An image and its box-filtered halvings, down to one texel.
 class TextureLevels {
 public:
-    explicit TextureLevels(const Texture& base) : levels_{base}, mean_(texel_mean(base)) {}
-
-    const Rgb& mean() const { return mean_; }
-    int count() const { return int(levels_.size()); }
-    const Texture& level(int k) const { return levels_[std::size_t(std::min(k, count() - 1))]; }
-
-    /// Makes the levels down to `k` (or down to one texel).
-    void build_to(int k) {
-        while (count() <= k) {
+    explicit TextureLevels(const Texture& base) : levels_{base}, mean_(texel_mean(base)) {
+        for (;;) {
             const Texture& from = levels_.back();
             if (from.width == 1 && from.height == 1) return;
             const int w = std::max(1, from.width / 2), h = std::max(1, from.height / 2);
@@ -118,11 +110,17 @@ public:
         }
     }
 
+    const Rgb& mean() const { return mean_; }
+    int count() const { return int(levels_.size()); }
+    const Texture& level(int k) const { return levels_[std::size_t(std::min(k, count() - 1))]; }
+
 private:
     std::vector<Texture> levels_;
     std::vector<std::unique_ptr<std::vector<float>>> owned_;
     Rgb mean_;
 };
+
+namespace {
 
 /// One texture role (reflectance or emission) of the faces.
 struct Role {
@@ -148,7 +146,7 @@ std::array<Role, 2> roles(const SceneInput& in) {
             Role{t.emission_texture, t.emission_scale, in.emission, std::numeric_limits<double>::infinity()}};
 }
 
-bool textured(const std::array<Role, 2>& r, std::size_t f) { return r[0].of(f) >= 0 || r[1].of(f) >= 0; }
+bool any_texture(const std::array<Role, 2>& r, std::size_t f) { return r[0].of(f) >= 0 || r[1].of(f) >= 0; }
 
 /// Texels across a footprint at the level an element reads: more than this reads a halved copy.
 constexpr double kMaxTexelsAcross = 64.0;
@@ -171,43 +169,66 @@ int level_for(const std::vector<UV>& uv, const Texture& base) {
 
 }  // namespace
 
-void texture_elements(const SceneInput& in, Elements& elements, const ProgressFn& progress) {
+FaceTextures::FaceTextures(const SceneInput& in) : input_(in), uv_(in.face_count) {
+    for (const Texture& t : in.textures->textures) levels_.emplace_back(t);
     const std::array<Role, 2> role = roles(in);
-    std::vector<std::unique_ptr<PolygonUv>> uv_of(in.face_count);
-    std::vector<std::size_t> todo;  // textured front elements
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-        const std::size_t f = std::size_t(elements.polygon[e]);
-        if (elements.is_back(e) || !textured(role, f)) continue;
-        if (!uv_of[f]) uv_of[f] = std::make_unique<PolygonUv>(in, f);
-        todo.push_back(e);
+    for (std::size_t f = 0; f < in.face_count; ++f)
+        if (any_texture(role, f)) uv_[f] = std::make_unique<PolygonUv>(in, f);
+}
+
+FaceTextures::~FaceTextures() = default;
+
+SurfaceColour FaceTextures::mean(std::size_t f, const Vec3* points, int count) const {
+    std::vector<UV> footprint;
+    for (int k = 0; k < count; ++k) footprint.push_back(uv_[f]->at(DVec3(points[k])));
+    const std::array<Role, 2> role = roles(input_);
+    SurfaceColour out;
+    for (std::size_t which = 0; which < role.size(); ++which) {
+        const Role& r = role[which];
+        Rgb& value = which == 0 ? out.reflectance : out.emission;
+        if (r.of(f) < 0) {
+            value = Rgb(r.value[3 * f], r.value[3 * f + 1], r.value[3 * f + 2]);
+            continue;
+        }
+        const TextureLevels& image = levels_[std::size_t(r.of(f))];
+        value = r.colour(f, footprint_mean(image.level(level_for(footprint, image.level(0))), footprint), image.mean());
     }
+    return out;
+}
+
+SurfaceColour FaceTextures::at(std::size_t f, const Vec3& x) const { return at_uv(f, uv_[f]->at(DVec3(x))); }
+
+SurfaceColour FaceTextures::at_uv(std::size_t f, const UV& uv) const {
+    const std::array<Role, 2> role = roles(input_);
+    SurfaceColour out;
+    for (std::size_t which = 0; which < role.size(); ++which) {
+        const Role& r = role[which];
+        Rgb& value = which == 0 ? out.reflectance : out.emission;
+        if (r.of(f) < 0) {
+            value = Rgb(r.value[3 * f], r.value[3 * f + 1], r.value[3 * f + 2]);
+            continue;
+        }
+        const std::size_t t = std::size_t(r.of(f));
+        value = r.colour(f, texel(input_.textures->textures[t], float(uv.x), float(uv.y)), levels_[t].mean());
+    }
+    return out;
+}
+
+void texture_elements(const SceneInput& in, Elements& elements, const ProgressFn& progress) {
+    const FaceTextures textures(in);
+    std::vector<std::size_t> todo;  // textured front elements
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        if (!elements.is_back(e) && textures.textured(std::size_t(elements.polygon[e]))) todo.push_back(e);
     if (todo.empty()) return;
 
-    // Each element's UV footprint, then the levels the textures need.
-    std::vector<TextureLevels> levels;
-    for (const Texture& t : in.textures->textures) levels.emplace_back(t);
-    std::vector<std::vector<UV>> footprint(todo.size());
-    for (std::size_t i = 0; i < todo.size(); ++i) {
-        const std::size_t e = todo[i], f = std::size_t(elements.polygon[e]);
-        for (int k = 0; k < elements.corner_count(e); ++k)
-            footprint[i].push_back(uv_of[f]->at(DVec3(elements.vertices[elements.corners[e][k]])));
-        for (const Role& r : role)
-            if (r.of(f) >= 0) {
-                TextureLevels& image = levels[std::size_t(r.of(f))];
-                image.build_to(level_for(footprint[i], image.level(0)));
-            }
-    }
-
     parallel_rows("textures", todo.size(), 64, 0, progress, [&](std::size_t i) {
-        const std::size_t e = todo[i], f = std::size_t(elements.polygon[e]);
-        for (std::size_t which = 0; which < role.size(); ++which) {
-            const Role& r = role[which];
-            if (r.of(f) < 0) continue;
-            const TextureLevels& image = levels[std::size_t(r.of(f))];
-            const Texture& level = image.level(level_for(footprint[i], image.level(0)));
-            (which == 0 ? elements.reflectance : elements.emission)[e] =
-                r.colour(f, footprint_mean(level, footprint[i]), image.mean());
-        }
+        const std::size_t e = todo[i];
+        std::array<Vec3, 4> corners;
+        for (int k = 0; k < elements.corner_count(e); ++k) corners[k] = elements.vertices[elements.corners[e][k]];
+        const SurfaceColour mean =
+            textures.mean(std::size_t(elements.polygon[e]), corners.data(), elements.corner_count(e));
+        elements.reflectance[e] = mean.reflectance;
+        elements.emission[e] = mean.emission;
         return true;
     });
 
@@ -222,41 +243,23 @@ void texture_elements(const SceneInput& in, Elements& elements, const ProgressFn
 }
 
 void texture_corners(const SceneInput& in, const Elements& elements, const CornerColors& light, CornerColors& colors) {
-    const std::array<Role, 2> role = roles(in);
-    std::vector<Rgb> means;
-    for (const Texture& t : in.textures->textures) means.push_back(texel_mean(t));
-    // The colour of face f at `uv` times the light arriving there, plus its emission there.
-    auto colour_at = [&](std::size_t f, const UV& uv, const Rgb& arriving) {
-        std::array<Rgb, 2> value;
-        for (std::size_t which = 0; which < role.size(); ++which) {
-            const Role& r = role[which];
-            const float* plain = which == 0 ? in.reflectance : in.emission;
-            if (r.of(f) < 0) {
-                value[which] = Rgb(plain[3 * f], plain[3 * f + 1], plain[3 * f + 2]);
-                continue;
-            }
-            const std::size_t t = std::size_t(r.of(f));
-            value[which] = r.colour(f, texel(in.textures->textures[t], float(uv.x), float(uv.y)), means[t]);
-        }
-        return value[1] + value[0] * arriving;
-    };
+    const FaceTextures textures(in);
+    auto lit = [](const SurfaceColour& c, const Rgb& arriving) { return c.emission + c.reflectance * arriving; };
     for (std::size_t f = 0; f < in.face_count; ++f) {
-        if (!textured(role, f)) continue;
+        if (!textures.textured(f)) continue;
         for (int32_t c = in.face_offsets[f]; c < in.face_offsets[f + 1]; ++c) {
             if (elements.corner_vertex[std::size_t(c)] < 0) continue;  // a skipped polygon's corner stays black
             const float* uv = in.textures->corner_uv + 2 * std::size_t(c);
-            colors.input_corner[std::size_t(c)] = colour_at(f, UV(uv[0], uv[1]), light.input_corner[std::size_t(c)]);
+            colors.input_corner[std::size_t(c)] =
+                lit(textures.at_uv(f, UV(uv[0], uv[1])), light.input_corner[std::size_t(c)]);
         }
     }
-    std::vector<std::unique_ptr<PolygonUv>> uv_of(in.face_count);
     for (std::size_t e = 0; e < elements.size(); ++e) {
         const std::size_t f = std::size_t(elements.polygon[e]);
-        if (elements.is_back(e) || !textured(role, f)) continue;
-        if (!uv_of[f]) uv_of[f] = std::make_unique<PolygonUv>(in, f);
-        for (int k = 0; k < elements.corner_count(e); ++k) {
-            const UV uv = uv_of[f]->at(DVec3(elements.vertices[elements.corners[e][k]]));
-            colors.element_corner[4 * e + k] = colour_at(f, uv, light.element_corner[4 * e + k]);
-        }
+        if (elements.is_back(e) || !textures.textured(f)) continue;
+        for (int k = 0; k < elements.corner_count(e); ++k)
+            colors.element_corner[4 * e + k] =
+                lit(textures.at(f, elements.vertices[elements.corners[e][k]]), light.element_corner[4 * e + k]);
     }
 }
 

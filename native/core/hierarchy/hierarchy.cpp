@@ -4,6 +4,7 @@
 #include "hierarchy/hierarchy.h"
 
 #include "common/report_progress.h"
+#include "geometry/surface_textures.h"
 #include "hierarchy/gather.h"
 #include "hierarchy/lamp_detail.h"
 #include "hierarchy/links.h"
@@ -15,6 +16,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -34,6 +36,28 @@ void free_links(hr::Tree& tree, Drop drop) {
 #ifdef __GLIBC__
     malloc_trim(0);
 #endif
+}
+
+/// Per channel a / rho, 0 where rho is 0: light per unit reflectance.
+Rgb per_reflectance(const Rgb& a, const Rgb& rho) {
+    Rgb out(0.0);
+    for (int c = 0; c < 3; ++c)
+        if (rho[c] > 0.0) out[c] = a[c] / rho[c];
+    return out;
+}
+
+/// The light arriving at the output's corners (irradiance / pi): the colours' light without the
+/// elements' reflectance and emission. `rest`: radiance interpolated between the corners,
+/// `emitted` its own emission, `corner_light` reflected light known at each corner.
+CornerColors light_arriving(const Elements& out, const int32_t* material, float hard_edge_angle,
+                            const std::vector<Rgb>& rest, const std::vector<Rgb>& emitted,
+                            const std::vector<Rgb>& corner_light) {
+    std::vector<Rgb> rest_light(out.size()), corner(corner_light.size());
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        rest_light[e] = per_reflectance(rest[e] - emitted[e], out.reflectance[e]);
+        for (int k = 0; k < 4; ++k) corner[4 * e + k] = per_reflectance(corner_light[4 * e + k], out.reflectance[e]);
+    }
+    return interpolate_corners(out, rest_light, material, hard_edge_angle, &corner);
 }
 
 bool finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
@@ -91,13 +115,17 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
         Elements& e = result.build.elements;
         world_light = world_irradiance(e, settings.world, progress);
         for (std::size_t p = 0; p < e.size(); ++p) {
-            world_light[p] = e.reflectance[p] * world_light[p] / M_PI;
-            e.emission[p] += world_light[p];
+            world_light[p] /= M_PI;
+            e.emission[p] += e.reflectance[p] * world_light[p];
         }
     }
     const Elements& patches = result.build.elements;
+    std::optional<detail::FaceTextures> textures;
+    if (input.textures) textures.emplace(input);
     stage(1);
     hr::Tree tree(result.build, settings.lights, settings.min_element_size, settings.limits.max_elements);
+    tree.textures = textures ? &*textures : nullptr;
+    tree.world_light = world_light;
     stage(2);
     std::vector<std::array<int32_t, 4>> patch_corners(tree.patch_count);
     for (std::size_t p = 0; p < tree.patch_count; ++p) patch_corners[p] = tree.nodes[p].corners;
@@ -152,22 +180,34 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     // and the corner's rays shape it there; the rest (light pushed down from clusters, patches
     // below the minimum size) is interpolated from the leaves' means (hierarchy/lamp_detail.h,
     // hierarchy/gather.h).
-    std::vector<Rgb> corner_light = hr::lamp_light_at_corners(result.output, settings.lights, visibility, progress);
-    std::vector<Rgb> rest(result.output.size());
-    for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    const Elements& out = result.output;
+    std::vector<Rgb> corner_light = hr::lamp_light_at_corners(out, settings.lights, visibility, progress);
+    // Each element's own emission, without the first reflections of lamps and World it holds.
+    std::vector<Rgb> emitted(out.size());
+    std::vector<Rgb> rest(out.size());
+    for (std::size_t e = 0; e < rest.size(); ++e) {
+        emitted[e] = out.emission[e] - mesh.lamp_part[e];
+        rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    }
     if (!world_light.empty()) {
         const std::vector<Rgb> world_at_corners =
-            detail::world_light_at_corners(result.output, settings.world, visibility, tree.scene_size, progress);
+            detail::world_light_at_corners(out, settings.world, visibility, tree.scene_size, progress);
         for (std::size_t k = 0; k < corner_light.size(); ++k) corner_light[k] += world_at_corners[k];
         for (std::size_t e = 0; e < rest.size(); ++e) {
             const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
-            if (patch >= 0) rest[e] -= world_light[std::size_t(patch)];
+            if (patch < 0) continue;
+            const Rgb world = out.reflectance[e] * world_light[std::size_t(patch)];
+            rest[e] -= world;
+            emitted[e] -= world;
         }
     }
-    hr::gather_at_corners(tree, visibility, result.output, mesh.leaf, rest, corner_light, progress);
+    hr::gather_at_corners(tree, visibility, out, mesh.leaf, rest, corner_light, progress);
     // The rest of the links, before the corner colours' welding and sets.
     free_links(tree, [](std::size_t) { return true; });
-    result.colors = interpolate_corners(result.output, rest, input.material, settings.hard_edge_angle, &corner_light);
+    result.colors = interpolate_corners(out, rest, input.material, settings.hard_edge_angle, &corner_light);
+    result.light_colors = light_arriving(out, input.material, settings.hard_edge_angle, rest, emitted, corner_light);
+    // Textured faces show their texel at each corner, lit by the light arriving there.
+    if (input.textures) detail::texture_corners(input, out, result.light_colors, result.colors);
     result.seconds_interpolate = seconds_since(start);
     check_output(result);
 

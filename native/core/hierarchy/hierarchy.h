@@ -89,6 +89,7 @@ struct HierarchyResult {
     Elements output;                   ///< emission: E + rho G from the lamps (their first reflection)
     std::vector<Rgb> output_radiance;  ///< per output element: its leaf's radiance
     CornerColors colors;               ///< interpolated on the output mesh; input corners for ORIGINAL
+    CornerColors light_colors;         ///< the light arriving at the same corners, irradiance / pi
     HierarchyStats stats;
     double residual = 0.0;
     bool converged = false;

@@ -87,12 +87,17 @@ public:
         const Node& n = tree_.nodes[id];
         if (!e.departs || !tree_.can_split(n, finest_) || !tree_.subdivide(id, finest_)) return;
         ++splits;
-        const Rgb rest = n.radiance - n.reflectance * lamp;
+        // The light n gathered besides the lamps', per unit reflectance: its radiance is its
+        // emission plus its reflectance times the light gathered.
+        Rgb rest(0.0);
+        for (int ch = 0; ch < 3; ++ch)
+            if (n.reflectance[ch] > 0.0) rest[ch] = (n.radiance[ch] - n.emission[ch]) / n.reflectance[ch] - lamp[ch];
         for (int k = 0; k < n.child_count; ++k) {
             const int32_t c = child(n, k);
             const Examined own = examine(c);
             own_lamp_light.push_back({c, own.mean});
-            tree_.nodes[c].radiance = rest + tree_.nodes[c].reflectance * own.mean;
+            Node& below = tree_.nodes[c];
+            below.radiance = below.emission + below.reflectance * (rest + own.mean);
             split(c, own.mean, own);
         }
     }
@@ -121,13 +126,15 @@ std::size_t split_for_lamp_light(Tree& tree, const Visibility& visibility, doubl
         if (node.is_element() && node.is_leaf() && max_channel(node.reflectance) > 0.0 && tree.can_split(node, finest))
             leaves.push_back(static_cast<int32_t>(n));
     }
+    const std::size_t first_new = tree.nodes.size();
     LampSplitter splitter(tree, visibility, threshold, finest);
     detail::parallel_rows("output", leaves.size(), 16, 0, progress, [&](std::size_t i) {
         splitter.split(leaves[i], lamp_light[leaves[i]], splitter.examine(leaves[i]));
         return true;
     });
+    const std::vector<int32_t> new_id = tree.number_in_order(first_new);
     lamp_light.resize(tree.nodes.size(), Rgb(0.0));
-    for (const auto& [node, light] : splitter.own_lamp_light) lamp_light[node] = light;
+    for (const auto& [node, light] : splitter.own_lamp_light) lamp_light[new_id[std::size_t(node) - first_new]] = light;
     return splitter.splits;
 }
 

@@ -15,10 +15,10 @@ namespace radiosity::hr {
 
 /// Splits element leaves, down to children of longest edge `finest`, while the lamps' reflected
 /// light (rho E / pi) at a 4 x 4 grid of points inside departs from the interpolation of its
-/// values at the leaf's corners by more than `threshold` (radiance). A new leaf takes its
-/// parent's radiance less the parent's lamp light, plus its own (the grid's mean), which is also
-/// its entry of `lamp_light` (per node, grown to the new nodes). Progress phase "output"; throws
-/// Cancelled. Returns how many leaves were split.
+/// values at the leaf's corners by more than `threshold` (radiance). A new leaf takes the light
+/// its parent gathered less the parent's lamp light, plus its own (the grid's mean), which is also
+/// its entry of `lamp_light` (per node, grown to the new nodes), times its own reflectance. Progress phase "output";
+/// throws Cancelled. Returns how many leaves were split.
 std::size_t split_for_lamp_light(Tree& tree, const Visibility& visibility, double threshold, float finest,
                                  std::vector<Rgb>& lamp_light, const ProgressFn& progress);
 

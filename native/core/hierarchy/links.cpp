@@ -7,6 +7,7 @@
 #include "transport/near_field.h"
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 namespace radiosity::hr {
@@ -492,6 +494,7 @@ bool Refiner::within_memory() {
 }
 
 void Refiner::link_all(std::vector<Pending> pending, double threshold, const ProgressFn& progress) {
+    const std::size_t first_new = tree_.nodes.size();
     tbb::enumerable_thread_specific<Output> outputs;
     tbb::enumerable_thread_specific<std::size_t> rays(0);
     links_ += pending.size();  // each waiting pair may become a link: the memory cap counts it
@@ -514,6 +517,13 @@ void Refiner::link_all(std::vector<Pending> pending, double threshold, const Pro
         pending.clear();
         for (const auto& level : next) pending.insert(pending.end(), level.begin(), level.end());
     }
+    const std::vector<int32_t> new_id = tree_.number_in_order(first_new);
+    auto renamed = [&](int32_t id) { return std::size_t(id) >= first_new ? new_id[std::size_t(id) - first_new] : id; };
+    for (auto& output : outputs)
+        for (auto& [receiver, l] : output) {
+            receiver = renamed(receiver);
+            l.source = renamed(l.source);
+        }
     place(outputs, progress);
     for (std::size_t r : rays) rays_ += r;
 }
@@ -522,13 +532,15 @@ void Refiner::place(tbb::enumerable_thread_specific<Output>& outputs, const Prog
     // Each receiver's list grows at most once, to its exact size (push_back's doubling would
     // leave up to half of the links' memory, the bulk of the bake's, unused), and the threads'
     // outputs (deques: no spare capacity, no copies as they grow) are freed block by block as
-    // their links are placed. One thread: the lists grow in the order the links were made.
+    // their links are placed. The new links of each list are then sorted by source: the threads
+    // made them in an order of their own, and the solve sums each list in its order.
     std::vector<uint32_t> added(tree_.nodes.size(), 0);
     std::size_t count = 0;
     for (const auto& output : outputs) {
         for (const auto& [receiver, l] : output) ++added[receiver];
         count += output.size();
     }
+    const std::vector<uint32_t> new_links = added;
     std::size_t placed = 0;
     for (auto& output : outputs) {
         for (; !output.empty(); output.pop_front()) {
@@ -539,6 +551,13 @@ void Refiner::place(tbb::enumerable_thread_specific<Output>& outputs, const Prog
             if (++placed % kLinksPerReport == 0) detail::report_progress(progress, "links", placed, count);
         }
     }
+    tbb::parallel_for(std::size_t(0), new_links.size(), [&](std::size_t receiver) {
+        if (new_links[receiver] == 0) return;
+        std::vector<Link>& links = tree_.nodes[receiver].links;
+        std::sort(links.end() - new_links[receiver], links.end(), [](const Link& a, const Link& b) {
+            return std::tie(a.source, a.factor, a.uncertainty) < std::tie(b.source, b.factor, b.uncertainty);
+        });
+    });
 }
 
 void Refiner::take_split_snapshot() {

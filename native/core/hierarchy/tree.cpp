@@ -6,6 +6,7 @@
 #include "common/stratified.h"
 #include "geometry/weld.h"
 
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -201,6 +202,13 @@ void Tree::fill_element(Node& n, const Node& parent) {
     n.normal = parent.normal;
     n.reflectance = parent.reflectance;
     n.emission = parent.emission;
+    const auto polygon = std::size_t(patch_polygon[std::size_t(n.patch)]);
+    if (textures && textures->textured(polygon)) {
+        const detail::SurfaceColour colour = textures->mean(polygon, c.data(), count);
+        n.reflectance = colour.reflectance;
+        n.emission = colour.emission;
+        if (!world_light.empty()) n.emission += n.reflectance * world_light[std::size_t(n.patch)];
+    }
     n.radiance = parent.radiance;  // a warm start for the next solve
     n.area = polygon_area(c, count);
     n.centre = Vec3(0.0f);
@@ -243,6 +251,43 @@ bool Tree::subdivide(int32_t e, float finest) {
     n.first_child = first_id;
     n.child_count = 4;
     return true;
+}
+
+std::vector<int32_t> Tree::number_in_order(std::size_t first) {
+    std::vector<int32_t> new_id(nodes.size() - first, -1);
+    if (new_id.empty()) return new_id;
+    // Nodes made since `first` are groups of four children (subdivide). Old split nodes whose
+    // children are new come first, by id; then the new nodes that have children, as they get ids.
+    std::vector<int32_t> parents;
+    for (std::size_t n = 0; n < first; ++n)
+        if (nodes[n].is_element() && nodes[n].child_count > 0 && std::size_t(nodes[n].first_child) >= first)
+            parents.push_back(static_cast<int32_t>(n));
+    auto next = static_cast<int32_t>(first);
+    for (std::size_t q = 0; q < parents.size(); ++q) {
+        const Node& parent = nodes[parents[q]];
+        for (int k = 0; k < parent.child_count; ++k) {
+            const int32_t c = parent.first_child + k;
+            new_id[std::size_t(c) - first] = next++;
+            if (nodes[c].child_count > 0) parents.push_back(c);
+        }
+    }
+    auto renamed = [&](int32_t id) {
+        return id >= 0 && std::size_t(id) >= first ? new_id[std::size_t(id) - first] : id;
+    };
+    tbb::parallel_for(std::size_t(0), nodes.size(), [&](std::size_t n) {
+        Node& node = nodes[n];
+        node.parent = renamed(node.parent);
+        if (node.is_element()) node.first_child = renamed(node.first_child);
+    });
+    // Each node to its new place, cycle by cycle.
+    std::vector<int32_t> place = new_id;
+    for (std::size_t i = 0; i < place.size(); ++i)
+        while (std::size_t(place[i]) != first + i) {
+            const std::size_t j = std::size_t(place[i]) - first;
+            std::swap(nodes[first + i], nodes[first + j]);
+            std::swap(place[i], place[j]);
+        }
+    return new_id;
 }
 
 }  // namespace radiosity::hr

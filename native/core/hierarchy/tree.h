@@ -3,6 +3,7 @@
 /// quadtree elements below them, lamps beside them, and the links each node gathers along.
 #pragma once
 
+#include "geometry/surface_textures.h"
 #include "hierarchy/hierarchy.h"
 
 #include <tbb/concurrent_vector.h>
@@ -180,7 +181,13 @@ public:
     std::vector<ClusterSplit> splits;
     std::vector<Vec3> patch_centres;     ///< per patch: Node::centre, where those walks end
     std::vector<int32_t> patch_polygon;  ///< per patch: its input polygon (Elements::polygon)
-    float scene_size = 0.0f;             ///< bounding box diagonal, metres
+    /// Image textures of the faces (null: none): an element split from a textured patch takes
+    /// its own mean colour over its part of the face, not its parent's.
+    const detail::FaceTextures* textures = nullptr;
+    /// Per patch (empty: no World): the World's light arriving, irradiance / pi, its mean over the
+    /// patch. Its first reflection is part of every element's emission (reflectance x this).
+    std::vector<Rgb> world_light;
+    float scene_size = 0.0f;  ///< bounding box diagonal, metres
     /// Points closer than this are one vertex (detail::weld_tolerance), and a point closer than
     /// this to a plane lies in it (in_plane_of).
     float weld_tolerance = 0.0f;
@@ -204,6 +211,12 @@ public:
     /// The vertex at a - b's midpoint if an element split that edge, else -1 (after refinement).
     int32_t existing_midpoint(int32_t a, int32_t b) const;
     std::size_t leaves() const { return leaves_; }
+    /// Gives the nodes made since `first` (elements split by threads in whatever order they ran)
+    /// the ids one thread would give them: each split node's children together, split nodes
+    /// taken in the order of their ids, breadth first. Ids then depend on the scene alone, and so
+    /// does everything that follows them (the order of links, seeds). Returns each of those
+    /// nodes' new id (index: old id - first); ids held outside the nodes are the caller's to map.
+    std::vector<int32_t> number_in_order(std::size_t first);
     /// Whether a split was refused because the leaves reached the cap.
     bool cap_reached() const { return cap_reached_; }
 

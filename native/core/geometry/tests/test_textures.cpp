@@ -8,6 +8,7 @@
 #include "testing/test_util.h"
 
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -248,6 +249,55 @@ TEST(SurfaceTextures, CornersShowTheTexelTimesTheLightArriving) {
     // The texture's colour shows: corner 0 (u = 0, texel 0.1) against corner 1 (u = 0.5, texel 0.4).
     EXPECT_LT(result.colors.input_corner[0].r / plain.light_colors.input_corner[0].r,
               result.colors.input_corner[1].r / plain.light_colors.input_corner[1].r);
+}
+
+TEST(SurfaceTextures, HierarchicalLeavesTakeTheirOwnMeanAndCornersTheTexel) {
+    // A floor under a point lamp, alone: the light arriving anywhere on it is the lamp's,
+    // I cos / (pi r^2), whatever its colour. The lamp's light splits leaves down to 1/16 of the
+    // floor, inside the checker's squares (1/4): each such leaf reflects its square's colour, and
+    // every corner shows the texel there times the light arriving.
+    const double a = 0.2, b = 0.6;
+    const OwnedTexture t = checker(4, a, b, TextureFilter::Closest);
+    test::SceneArrays s;
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(0.4));  // the checker's mean
+    const Textured textured(s, t.view, false);
+    SceneInput in = s.input();
+    in.textures = &textured.textures;
+    BakeSettings settings;
+    settings.hierarchical.enabled = true;
+    settings.element_size = 0.25f;
+    PointLight lamp;
+    lamp.position = Vec3(0.4f, 0.55f, 0.3f);
+    lamp.intensity = Rgb(1.0);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(in, settings);
+    const Elements& e = r.build.elements;
+    std::size_t inside_a_square = 0;
+    for (std::size_t k = 0; k < e.size(); ++k) {
+        double x0, x1, y0, y1;
+        element_box(e, k, x0, x1, y0, y1);
+        if (x1 - x0 > 0.25 + 1e-6 || y1 - y0 > 0.25 + 1e-6) continue;
+        ++inside_a_square;
+        EXPECT_NEAR(e.reflectance[k].g, checker_mean(4, a, b, x0, x1, y0, y1), 1e-6) << "element " << k;
+    }
+    EXPECT_GT(inside_a_square, 16u);
+    auto arriving = [&](const Vec3& x) {
+        const Vec3 d = lamp.position - x;
+        const double r2 = glm::dot(d, d);
+        return d.z / std::sqrt(r2) / (M_PI * r2);
+    };
+    for (std::size_t k = 0; k < e.size(); ++k)
+        for (int c = 0; c < e.corner_count(k); ++c) {
+            const Vec3 x = e.vertices[e.corners[k][c]];
+            const double light = arriving(x);
+            EXPECT_NEAR(r.light_colors.element_corner[4 * k + c].g, light, 1e-3 * light) << "element " << k;
+            EXPECT_NEAR(r.colors.element_corner[4 * k + c].g, texel(t.view, x.x, x.y).g * light, 1e-3 * light)
+                << "element " << k;
+        }
+    for (std::size_t c = 0; c < 4; ++c) {
+        const float u = textured.uv[2 * c], v = textured.uv[2 * c + 1];
+        EXPECT_NEAR(r.colors.input_corner[c].g, texel(t.view, u, v).g * r.light_colors.input_corner[c].g, 1e-6);
+    }
 }
 
 }  // namespace
