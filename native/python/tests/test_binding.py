@@ -70,10 +70,32 @@ class FurnaceTest(unittest.TestCase):
         result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
                             tolerance=1e-7, final_gather=True, gather_rays=64, gather_shadow_rays=16)
         np.testing.assert_allclose(result["corner_radiance"], emitted / (1.0 - rho), rtol=1e-4)
-        self.assertEqual(result["final_gather"], {"points": 24, "buried": 0})
+        gather = result["final_gather"]
+        self.assertEqual((gather["points"], gather["buried"]), (24, 0))
         self.assertNotIn("final_gather", _core.bake(*box_arrays(), element_size=0.5, resolution=16))
         with self.assertRaisesRegex(ValueError, "gather_rays"):
             _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_rays=0)
+
+    def test_final_gathers_statistics_in_the_furnace(self):
+        """What the error estimate reads: every ray sees the walls' reflected light L - E, so each
+        corner's indirect share is exactly rho (L - E), its rays do not differ, the field (gathered
+        at the element vertices) carries every element's light and has no noise to pass on."""
+        rho, emitted = 0.6, 2.0
+        light = emitted / (1.0 - rho)
+        for field_rays in (0, 16):
+            result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
+                                tolerance=1e-7, final_gather=True, gather_rays=64, gather_shadow_rays=16,
+                                gather_field_rays=field_rays)
+            gather = result["final_gather"]
+            for key in ("solution_light", "indirect", "variance", "field_noise"):
+                self.assertEqual(gather[key].shape, result["corner_radiance"].shape, key)
+            np.testing.assert_allclose(gather["solution_light"], (light - emitted) / rho, rtol=1e-4)
+            np.testing.assert_allclose(gather["indirect"], rho * (light - emitted), rtol=1e-4)
+            np.testing.assert_allclose(gather["variance"], 0.0, atol=1e-9)
+            np.testing.assert_allclose(gather["field_noise"], 0.0, atol=1e-9)
+            self.assertEqual(gather["element_field_error"].shape, (result["elements"], 3))
+            np.testing.assert_allclose(gather["element_field_error"], 0.0, atol=1e-4)
+            np.testing.assert_allclose(gather["element_reflected"][~result["element_back"]], light - emitted, rtol=1e-4)
 
     def test_emitters_lit_directly_meet_the_furnace(self):
         """Every element of the box is smaller than direct_emitter_area, so each lights the others
