@@ -1,6 +1,7 @@
 """The bake pipeline: export (needs bpy) -> solve (no bpy, may run in a worker thread) ->
 write back (needs bpy). `bake(scene, **overrides)` runs all three; the operator splits them."""
 
+import dataclasses
 import math
 import time
 
@@ -138,7 +139,7 @@ class BakeJob:
         seconds_writeback = time.perf_counter() - start
         r, c = self.result, self.choice
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
-        error = error_estimate.estimate(r, power, self.choice.gather_rays)
+        error = error_estimate.estimate(r, power)
         summary = {
             "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
@@ -148,10 +149,9 @@ class BakeJob:
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
             "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
             "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
-                       "leaving": power.leaving, "absorbed_fraction": power.absorbed_fraction},
-            "error_estimate": {"solve_bound": error.solve_bound, "discretisation": error.discretisation,
-                               "discretisation_vs_cycles": error.discretisation_vs_cycles,
-                               "discretisation_relation": error.discretisation_relation},
+                       "created": power.created, "leaving": power.leaving,
+                       "absorbed_fraction": power.absorbed_fraction},
+            "error_estimate": dataclasses.asdict(error),
             "zones": r.get("zones", 0), "zones_before_merge": r.get("zones_before_merge", 0),
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
@@ -240,8 +240,10 @@ def bake(scene, **overrides):
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
     resolution_reason, near_field, tolerance, matrix memory), the World's light baked (world: name,
     rendered, width, height, description; None when none) and what lights the bake (lit_by),
-    energy (watts emitted, absorbed, lost), error_estimate (solve bound, measured discretisation
-    error), warnings, and seconds per phase (export, form_factors, solve, writeback).
+    energy (watts emitted, absorbed, lost, created), error_estimate (the typical relative error per
+    corner, its relation and source, its parts from the gather: sampling, the solution's bias and the
+    field's light; the solve's bound), warnings, and seconds per phase (export, form_factors, solve,
+    writeback).
 
     `overrides` take any scene.radiosity setting by name for this bake only, e.g.
     bake(scene, quality="HIGH") or bake(scene, element_size=0.05, method="PROGRESSIVE"); naming

@@ -2,6 +2,7 @@
 the core run, the result judged and put in words, on a closed box whose light is known exactly
 (the furnace: L = E / (1 - rho) on every inner face; what its walls emit outwards, from their back
 sides, leaves it, and everything they emit inwards is absorbed)."""
+import dataclasses
 import sys
 import unittest
 
@@ -63,14 +64,45 @@ class EngineTest(unittest.TestCase):
         choice, result = bake(closed_box())
         power = energy.balance(result)
         self.assertAlmostEqual(power.absorbed_fraction, 0.5, delta=1e-3)  # the inward half of the light
-        error = error_estimate.estimate(result, power, choice.gather_rays)
+        self.assertEqual(power.created, 0.0)
+        self.assertAlmostEqual(power.lost / power.emitted, 0.5, delta=1e-3)  # the back sides' half leaves
         line = summary.report_line({
             "elements": result["elements"], "method": choice.method, "gather_rays": choice.gather_rays,
             "iterations": result["iterations"], "residual": result["residual"], "converged": result["converged"],
             "seconds": dict(result["seconds"])})
         self.assertIn("%d elements" % result["elements"], line)
         self.assertIn("(converged)", line)
-        self.assertGreater(error.discretisation, 0.0)
+
+    def test_the_gathers_error_estimate_covers_the_furnaces_error(self):
+        # Every inner corner's light is exactly E / (1 - rho); Medium gathers every corner.
+        rho, emitted = 0.6, 2.0
+        choice, result = bake(closed_box(rho, emitted))
+        error = error_estimate.estimate(result)
+        actual = np.sqrt(np.mean((result["corner_radiance"] @ error_estimate.LUMINANCE * (1 - rho) / emitted - 1) ** 2))
+        self.assertEqual((error.source, error.relation), ("gather", "about"))
+        # The walls all look alike, so the rays' sampling adds nothing, and the estimate says what
+        # the furnace is: exact to well under 0.1%, within the estimate and the solve's bound.
+        self.assertLess(error.sampling, 0.01 * error.typical)
+        self.assertLess(actual, 1e-3)
+        self.assertLess(error.typical, 1e-3)
+        self.assertLessEqual(actual, error.typical + error.solve_bound)
+        self.assertIn("Error about %.1f%% per corner (this bake's gather" % (100 * error.typical),
+                      summary.error_text(dataclasses.asdict(error)))
+
+    def test_light_created_from_nothing_is_a_share_of_its_own(self):
+        # The furnace's radiance raised by 80%: its inner surfaces absorb more than both sides emitted.
+        choice, result = bake(closed_box(), quality="DRAFT", final_gather=False)
+        raised = dict(result, element_radiance=1.8 * result["element_radiance"])
+        power = energy.balance(raised)
+        self.assertGreater(power.absorbed, power.emitted)
+        self.assertEqual(power.lost, 0.0)
+        self.assertAlmostEqual(power.created, power.absorbed - power.emitted)
+        text = summary.power_text(dataclasses.asdict(power) | {"lost": power.lost, "created": power.created})
+        self.assertNotIn("-", text)
+        self.assertIn("100.0%% absorbed, 0.0%% escaped or on black, and %.1f%% more absorbed than emitted"
+                      % (100 * power.created / power.emitted), text)
+        error = error_estimate.estimate(raised, power)
+        self.assertEqual((error.relation, error.typical), ("at least", power.created / power.emitted))
 
     def test_bad_input_is_a_bake_error_naming_the_setting(self):
         scene = closed_box()

@@ -142,6 +142,18 @@ py::array_t<float> grid_array(const std::vector<Rgb>& values, const std::array<i
     return out;
 }
 
+/// Per input corner (GatherStatistics): the solution's light arriving, the indirect light read, the
+/// colour's sampling variance from its own rays and from the field's noise; per element, the field's
+/// error in the light it carries and the light the solve found there.
+void add_gather_statistics(const GatherStatistics& statistics, py::dict& out) {
+    out["solution_light"] = to_numpy(statistics.solution_light.input_corner);
+    out["indirect"] = to_numpy(statistics.indirect.input_corner);
+    out["variance"] = to_numpy(statistics.variance.input_corner);
+    out["field_noise"] = to_numpy(statistics.field_noise.input_corner);
+    out["element_field_error"] = to_numpy(statistics.element_field_error);
+    out["element_reflected"] = to_numpy(statistics.element_reflected);
+}
+
 void add_media(const MediaResult& media, py::dict& out) {
     const Zones& zones = media.zones;
     std::vector<Rgb> weight(zones.size());
@@ -245,6 +257,7 @@ py::dict bake_result(const BakeResult& result) {
         py::dict gather;
         gather["points"] = result.gathered_points;
         gather["buried"] = result.buried_points;
+        if (result.gather_statistics) add_gather_statistics(*result.gather_statistics, gather);
         out["final_gather"] = gather;
     }
     out["hierarchy"] = result.hierarchy ? py::object(hierarchy_counts(*result.hierarchy)) : py::object(py::none());

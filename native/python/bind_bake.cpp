@@ -125,7 +125,9 @@ void bind_bake(py::module_& m) {
           "leaves), corner_radiance, element_corner_radiance, element_radiance, element_emission, "
           "element_reflectance, corner_light and element_corner_light, iterations, shots, residual, "
           "residual_history, converged, matrix_stored, matrix_nonzeros, matrix_bytes, seconds per phase, "
-          "final_gather and direct_emitters when they ran, hierarchy (its counts, or None), and with media zones, "
+          "final_gather (points, buried and what the error estimate reads: solution_light, indirect, variance, "
+          "field_noise per corner, element_field_error and element_reflected per element) and direct_emitters when "
+          "they ran, hierarchy (its counts, or None), and with media zones, "
           "zones_before_merge, zone_radiance, zone_medium, zone_weight (4 K_t V), zone_emitted, zone_albedo, "
           "zone_incident and per medium grids [{origin, voxel_size, density: K_t, emission: K_t J}].",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,

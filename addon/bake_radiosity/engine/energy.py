@@ -6,7 +6,8 @@ is in its emission (element_emission), so it counts as emitted here.
 
 In radiance units an element reflects pi A (L - E) = pi A rho H watts of the light H it receives,
 so it absorbs pi A (1 - rho) H = pi A (1 - rho) / rho (L - E). What was emitted and not absorbed
-by a reflecting surface left the scene, fell on a black surface (a lamp, an emitter) or leaked.
+by a reflecting surface left the scene, fell on a black surface (a lamp, an emitter) or leaked;
+what was absorbed beyond what was emitted, the bake created (its error), so no share is negative.
 In a closed scene without black surfaces that remainder is pi sum A r / rho for the solve's
 residual r = E - (I - rho F) L: zero once converged, so it checks the whole bake."""
 
@@ -24,8 +25,14 @@ class EnergyBalance:
 
     @property
     def lost(self):
-        """Watts that escaped, fell on black surfaces, or leaked."""
-        return self.emitted - self.absorbed
+        """Watts that escaped, fell on black surfaces, or leaked (never below 0: see created)."""
+        return max(self.emitted - self.absorbed, 0.0)
+
+    @property
+    def created(self):
+        """Watts absorbed beyond what was emitted: light the bake made from nothing (a solve stopped
+        while it overshoots, form factors that are not reciprocal). 0 in a sound bake."""
+        return max(self.absorbed - self.emitted, 0.0)
 
     @property
     def absorbed_fraction(self):

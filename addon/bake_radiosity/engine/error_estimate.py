@@ -1,7 +1,23 @@
-"""An estimate of a bake's error for the summary (numpy, no bpy): a bound on what the solve left,
-from its residual, plus the discretisation error measured at about as many elements on the
-Cornell box (docs/charts/bake_vs_cycles.csv, explained in docs/accuracy.md). Other scenes differ:
-it is an estimate of the size of the error, not a measurement of this bake."""
+"""An estimate of a bake's error for the summary (numpy, no bpy), relative RMS luminance per corner.
+
+With the final gather it comes from the bake itself (`_core.bake`'s result["final_gather"], the
+core's output/gather_statistics.h), in three parts added as squares:
+  - sampling: each corner's indirect light is a stratified mean over its rays; the variance of that
+    mean comes from two interleaved halves of its rays, and the noise of the field those rays read
+    (gathered at the element vertices with few rays) from a probe read through the same rays;
+  - the solution's bias: the share of a corner's light that is indirect comes from the solution,
+    so it carries the solution's error less what the mean over the hemisphere averages out: its
+    bias, the mean relative difference of the light arriving at the corners, as the solution
+    interpolates it, from the light the gather found there;
+  - the field's light: the field the rays read, blended between element corners, need not carry
+    the light the solve found on each element (a lamp's hot spot between the vertices); the share
+    of the light it misses or adds, area-weighted over the elements, comes to the corners' indirect
+    light in proportion.
+The solve's bound (solve_bound) is given apart, and light created from nothing (more absorbed than
+emitted) puts a floor under the estimate. What the bake cannot see is not in it: where the gather
+and the solution make the same error (docs/accuracy.md, "The summary after a bake", measures the
+estimate against Cycles). Without the gather (the hierarchy, media, the gather turned off) the error
+is the one measured on the Cornell box for about as many elements."""
 
 import math
 from dataclasses import dataclass
@@ -10,60 +26,79 @@ import numpy as np
 
 from . import energy
 
-# The Cornell box of blender_tests/scenes.py baked at Draft, Medium and High as the presets choose
-# (resolution 56, 136, 236; near field at Medium and High; and with 1/8 m elements, resolution
-# 128, below Draft), from
-# docs/charts/bake_vs_cycles.csv: (elements, relative RMS corner error against a converged
-# radiosity bake with 1/64 m elements, against Cycles' converged bake). The first column measures
-# discretisation; the second adds what radiosity does
-# not model the way Cycles does (2.1% between the two converged bakes).
+# Rec. 709 luminance of linear RGB: Blender's scene-linear colour space.
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+# Corners darker than this share of the mean corner are left out (as the accuracy measure does).
+DARK_SHARE = 0.01
+
+# Without the gather: the Cornell box of blender_tests/scenes.py baked at Draft, Medium and High as
+# the presets chose before the gather (resolution 56, 136, 236; near field at Medium and High; and
+# with 1/8 m elements, resolution 128, below Draft), from docs/charts/bake_vs_cycles.csv:
+# (elements, relative RMS corner error against Cycles' converged bake).
 MEASURED = (
-    (428, 0.114, 0.122),
-    (1712, 0.0478, 0.0575),
-    (6848, 0.0136, 0.0278),
-    (15408, 0.0087, 0.0224),
+    (428, 0.122),
+    (1712, 0.0575),
+    (6848, 0.0278),
+    (15408, 0.0224),
 )
-# The same box with the final gather (lab/final_gather/README.md), by the gather's rays a corner:
-# (elements, relative RMS corner error against Cycles at 2 x 8192 samples, its noise taken out).
-# The presets bake 1,728 elements with 256 (Draft) and 1024 rays (Medium), 3,888 with 4096 (High).
-MEASURED_GATHER = {
-    256: ((432, 0.0181), (1728, 0.0124), (6912, 0.0127)),
-    1024: ((1728, 0.0068), (6912, 0.0072), (15552, 0.0049)),
-    4096: ((1728, 0.0063), (3888, 0.0041), (6912, 0.0055), (15552, 0.0033)),
-}
 
 
 @dataclass(frozen=True)
 class ErrorEstimate:
-    solve_bound: float               # relative to the baked light, at most this from the solve
-    discretisation: float            # measured for this many elements, against a converged radiosity bake
-    discretisation_vs_cycles: float  # the same against Cycles (includes what radiosity cannot model)
-    discretisation_relation: str     # "about"; beyond the measured element counts "at least" / "at most"
+    typical: float      # relative RMS luminance error per corner to expect (solve bound apart)
+    relation: str       # "about"; "at least" (light created, or fewer elements than measured), "at most"
+    source: str         # "gather": from this bake's gather; "measured": the Cornell box's table
+    sampling: float       # the gather's sampling: its own rays and the field's noise (0 without the gather)
+    solution_bias: float  # the solution's bias as the gather's indirect light carries it (0 without)
+    field_light: float    # the light the field misses or adds, as the indirect light carries it (0 without)
+    solve_bound: float    # relative to the baked light, at most this from the solve
 
 
-def estimate(result, power=None, gather_rays=0):
-    """ErrorEstimate of a `_core.bake` result; with the final gather (of `gather_rays` rays a corner:
-    the measurement with the nearest count), against Cycles alone (the gather is measured against
-    nothing else). The table's value is only a typical size: a bake
-    whose surfaces (and zones) absorbed more than was emitted (`power`, an energy.EnergyBalance,
-    by default energy.balance(result)) made that light from nothing, so its error is at least that
-    share, whatever the table says for its element count."""
-    elements = int((~result["element_back"]).sum())  # as measured: emitters' back sides are not shown
-    if result.get("final_gather"):
-        rays = min(MEASURED_GATHER, key=lambda measured: abs(math.log(max(gather_rays, 1) / measured)))
-        table = MEASURED_GATHER[rays]
-        relation = _relation(elements, table)
-        discretisation = vs_cycles = _interpolate(elements, 1, table)
+def estimate(result, power=None):
+    """ErrorEstimate of a `_core.bake` result; `power` (an energy.EnergyBalance, by default
+    energy.balance(result)): a bake whose surfaces (and zones) absorbed more than was emitted made
+    that light from nothing, so its error is at least that share."""
+    gather = result.get("final_gather") or {}
+    if "variance" in gather:
+        sampling, bias, field = gather_parts(result, gather)
+        typical, relation, source = math.sqrt(sampling ** 2 + bias ** 2 + field ** 2), "about", "gather"
     else:
-        relation = _relation(elements)
-        discretisation, vs_cycles = _interpolate(elements, 1), _interpolate(elements, 2)
+        elements = int((~result["element_back"]).sum())  # as measured: emitters' back sides are not shown
+        typical, relation, source = _interpolate(elements), _relation(elements), "measured"
+        sampling = bias = field = 0.0
     power = power if power is not None else energy.balance(result)
-    created = (power.absorbed - power.emitted) / power.emitted if power.emitted > 0.0 else 0.0
-    if not math.isfinite(created) or created > discretisation:
-        created = created if math.isfinite(created) else math.inf
-        relation, discretisation, vs_cycles = "at least", created, max(created, vs_cycles)
-    return ErrorEstimate(solve_bound=solve_bound(result), discretisation_relation=relation,
-                         discretisation=discretisation, discretisation_vs_cycles=vs_cycles)
+    created = power.created / power.emitted if power.emitted > 0.0 else 0.0
+    if not math.isfinite(created) or created > typical:
+        typical, relation = created if math.isfinite(created) else math.inf, "at least"
+    return ErrorEstimate(typical=typical, relation=relation, source=source, sampling=sampling, solution_bias=bias,
+                         field_light=field, solve_bound=solve_bound(result))
+
+
+def gather_parts(result, gather):
+    """(sampling, solution's bias, field's light) as relative RMS luminance over the corners of a
+    `_core.bake` result and its gather's statistics. Corners that emit (a colour brighter than the
+    light arriving: their emission would outweigh the rest in the bias), unless all do, and the
+    darkest are left out."""
+    value = _luminance(result["corner_radiance"])
+    reflecting = value <= _luminance(result["corner_light"]) * (1.0 + 1e-6)
+    if not reflecting.any():
+        reflecting = np.ones_like(reflecting)
+    judged = reflecting & (value >= DARK_SHARE * value[reflecting].mean()) & (value > 0.0)
+    if not judged.any():
+        return 0.0, 0.0, 0.0
+    v = value[judged]
+    own = _luminance(np.sqrt(np.maximum(gather["variance"], 0.0)))[judged]
+    field = _luminance(np.sqrt(np.maximum(gather["field_noise"], 0.0)))[judged]
+    sampling = math.sqrt(float(np.mean((own ** 2 + field ** 2) / v ** 2)))
+    light = _luminance(result["corner_light"])[judged]
+    bias = float(np.sum(_luminance(gather["solution_light"])[judged] - light) / np.sum(light))
+    share = math.sqrt(float(np.mean((_luminance(gather["indirect"])[judged] / v) ** 2)))
+    shown = ~result["element_back"]  # read flat, not through the field
+    area = result["element_area"].astype(np.float64)[shown]
+    reflected = float(np.sum(area * _luminance(gather["element_reflected"])[shown]))
+    missed = float(np.sum(area * _luminance(gather["element_field_error"])[shown]))
+    missed = missed / reflected if reflected > 0.0 else 0.0
+    return sampling, abs(bias) * share, abs(missed) * share
 
 
 def solve_bound(result):
@@ -86,17 +121,21 @@ def solve_bound(result):
     return result["residual"] * emitted / leaving / (1.0 - rho_max)
 
 
-def _relation(elements, table=MEASURED):
+def _luminance(rgb):
+    return np.asarray(rgb, dtype=np.float64) @ LUMINANCE
+
+
+def _relation(elements):
     # Fewer elements than measured err more than the coarsest measurement, more elements less.
-    if elements < table[0][0]:
+    if elements < MEASURED[0][0]:
         return "at least"
-    if elements > table[-1][0]:
+    if elements > MEASURED[-1][0]:
         return "at most"
     return "about"
 
 
-def _interpolate(elements, column, table=MEASURED):
+def _interpolate(elements):
     """Log-log interpolation in the measured table; the nearest end outside it."""
-    counts = np.log([row[0] for row in table])
-    errors = np.log([row[column] for row in table])
+    counts = np.log([row[0] for row in MEASURED])
+    errors = np.log([row[1] for row in MEASURED])
     return float(np.exp(np.interp(np.log(max(elements, 1)), counts, errors)))

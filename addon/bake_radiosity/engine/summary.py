@@ -27,21 +27,37 @@ def report_line(summary):
 
 def accuracy_line(summary):
     """Residual; energy balance; error estimate; resolution and why (the panel shows one part a line)."""
-    power, error = summary["energy"], summary["error_estimate"]
-    lost = power["lost"] / power["emitted"] if power["emitted"] > 0.0 else 0.0
     return "; ".join((
         "Residual %.1e" % summary["residual"],
-        "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
-            power["emitted"], 100 * power["absorbed_fraction"], 100 * lost),
-        "Error typically %s %.1f%% (%s, measured on the Cornell box) + at most %.2g%% (solve)" % (
-            error["discretisation_relation"], 100 * error["discretisation"],
-            "element size and final gather, against Cycles" if summary.get("gather_rays") else "element size",
-            100 * error["solve_bound"]),
+        power_text(summary["energy"]),
+        error_text(summary["error_estimate"]),
         "Hemi-cube resolution %d%s%s: %s" % (
             summary["resolution"], " x %d rotations" % summary["hemicube_rotations"]
             if summary["hemicube_rotations"] > 1 else "", ", near field" if summary["near_field"] else "",
             summary["resolution_reason"]),
     ))
+
+
+def power_text(power):
+    """Where the emitted watts went, every share at least 0: absorbed, escaped or on black surfaces,
+    and light the bake created (absorbed beyond what was emitted) when there is any."""
+    emitted = power["emitted"]
+    share = (lambda watts: 100 * watts / emitted) if emitted > 0.0 else (lambda watts: 0.0)
+    text = "Power %.3g W emitted: %.1f%% absorbed, %.1f%% escaped or on black" % (
+        emitted, share(min(power["absorbed"], emitted)), share(power["lost"]))
+    if power["created"] > 0.0:
+        text += ", and %.1f%% more absorbed than emitted (created by the bake's error)" % share(power["created"])
+    return text
+
+
+def error_text(error):
+    if error["source"] == "gather":
+        where = "this bake's gather: sampling %.1f%%, solution's bias %.1f%%, field's light %.1f%%" % (
+            100 * error["sampling"], 100 * error["solution_bias"], 100 * error["field_light"])
+    else:
+        where = "element size, measured on the Cornell box against Cycles"
+    return "Error %s %.1f%% per corner (%s) + at most %.2g%% (solve)" % (
+        error["relation"], 100 * error["typical"], where, 100 * error["solve_bound"])
 
 
 def progress_text(info, tolerance):

@@ -118,10 +118,10 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
 
     if (settings.final_gather.enabled) {
         start = Clock::now();
-        const detail::GatherCounts counts =
-            detail::final_gather(elements, emitted, result.solve.radiance, settings.lights, settings.world,
-                                 settings.final_gather, input.material, input.face_offsets, input.face_count,
-                                 settings.hard_edge_angle, result.colors, result.light_colors, progress);
+        const detail::GatherCounts counts = detail::final_gather(
+            elements, emitted, result.solve.radiance, settings.lights, settings.world, settings.final_gather,
+            input.material, input.face_offsets, input.face_count, settings.hard_edge_angle, result.colors,
+            result.light_colors, progress, &result.gather_statistics.emplace());
         result.gathered_points = counts.gathered;
         result.buried_points = counts.buried;
         result.seconds_gather = seconds_since(start);

@@ -104,7 +104,7 @@ public:
     /// same vertex picks the same point: the buried test does not read the solution).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
                      Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
-                     SeamReads* reads = nullptr) const {
+                     SeamReads* reads = nullptr, PointStatistics* statistics = nullptr) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
@@ -131,7 +131,8 @@ public:
             const Vec3 x = candidates[i];
             const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
-            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads)) continue;  // buried
+            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads, statistics))
+                continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
             if (!direct_known) direct_light = direct(x, origin, n, seed);
             if (reads != nullptr) reads->direct = direct_light;
@@ -176,7 +177,7 @@ public:
         const Vec3 n = elements_.normal[e];
         float seam_share = 0.0f;
         return gather_indirect(lifted(x, n), n, mix_seed(place, 0x5EEDU), glm::length(elements_.centre[e] - x), out,
-                               seam_share, nullptr);
+                               seam_share, nullptr, nullptr);
     }
 
     /// Where the gather at element vertex `vertex` of element `e` starts, unless that is buried.
@@ -201,13 +202,14 @@ private:
     /// that met another surface right at the point (closer than kSeam of the element hit). With
     /// `reads`, what those rays read of the field goes there as weights, the rest as its indirect.
     bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
-                         SeamReads* reads) const {
+                         SeamReads* reads, PointStatistics* statistics) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
         Rgb sum(0.0), rest(0.0);
         std::vector<std::pair<int32_t, double>> slots;
         int back_near = 0, at_seam = 0;
+        RaySpread spread(elements_, statistics, grid_);
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
@@ -219,6 +221,7 @@ private:
                 const Rgb wedge = wedge_light(hit);
                 const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
                 sum += seen;
+                spread.add(i, seen, hit);
                 const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
@@ -234,6 +237,7 @@ private:
         if (2 * back_near > rays) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
+        spread.finish(out, rays);
         if (reads != nullptr) {
             std::sort(slots.begin(), slots.end());
             reads->slots.clear();
@@ -425,7 +429,8 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 template <typename PolygonCentre>
 void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<int32_t>& element_at,
                   const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
-                  const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field) {
+                  const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field,
+                  std::vector<PointStatistics>& statistics) {
     std::vector<int32_t> vertices;
     for (std::size_t v = 0; v < elements.vertices.size(); ++v)
         if (element_at[v] >= 0) vertices.push_back(int32_t(v));
@@ -437,7 +442,7 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         Rgb L, light, direct;
         float seam_share = 0.0f;
         if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
-                                 seam_share, direct, false) &&
+                                 seam_share, direct, false, nullptr, &statistics[v]) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
             done[v] = 1;
@@ -521,7 +526,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
                           const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                           const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                           float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                          const ProgressFn& progress) {
+                          const ProgressFn& progress, GatherStatistics* statistics) {
     GatherCounts counts;
     if (elements.size() == 0) return counts;
     const std::vector<Vec3> approach = corner_approach(elements, face_offsets, face_count);
@@ -589,12 +594,14 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
     CornerWedges wedges;
+    std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
                                       field_settings, emitters, visibility, scene_size);
-        gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field);
+        gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
+                     field_statistics);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
         // point (along the same shadow rays as at the vertex, the change has little noise).
         FinalGatherSettings wedge_settings = settings;
@@ -604,11 +611,14 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
                                       emitters, visibility, scene_size);
         wedges = wedge_tables(wedge_gatherer, elements, seam, place, element_at, approach, progress);
     }
+    const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
     std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
     std::vector<SeamReads> reads(points.size());
+    std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
+    std::vector<PointStatistics> point_statistics(points.size(), {field_statistics.empty() ? nullptr : &probe});
     std::vector<std::size_t> todo(points.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
     auto write_field = [&](const std::vector<uint8_t>& which) {  // the field at those points' vertices
@@ -618,7 +628,9 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         for (std::size_t e = 0; e < elements.size(); ++e)
             for (int k = 0; k < elements.corner_count(e); ++k) {
                 const int32_t i = gathered_index[elements.corners[e][k]];
-                if (i >= 0) field[4 * e + k] = value[std::size_t(i)];
+                if (i < 0) continue;
+                field[4 * e + k] = value[std::size_t(i)];
+                probe[4 * e + k] = Rgb(0.0);  // the gathered value: not the field's noise
             }
     };
     const int passes = 2;
@@ -633,7 +645,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             float share = 0.0f;
             if (gatherer.radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
                                      uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
-                                     last ? &reads[i] : nullptr) &&
+                                     last ? &reads[i] : nullptr, &point_statistics[i]) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
@@ -660,6 +672,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         if (is_output[points[i]]) output_index[points[i]] = int32_t(i);
     std::vector<Rgb> slot_value(4 * elements.size(), Rgb(0.0)), slot_light(4 * elements.size(), Rgb(0.0));
     std::vector<uint8_t> known(4 * elements.size(), 0);
+    std::vector<int32_t> slot_point(4 * elements.size(), -1);
     for (std::size_t e = 0; e < elements.size(); ++e)
         for (int k = 0; k < elements.corner_count(e); ++k) {
             const int32_t i = output_index[elements.corners[e][k]];
@@ -667,7 +680,11 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             slot_value[4 * e + k] = value[std::size_t(i)];
             slot_light[4 * e + k] = light[std::size_t(i)];
             known[4 * e + k] = 1;
+            slot_point[4 * e + k] = i;
         }
+    if (statistics != nullptr)
+        *statistics = gather_statistics(elements, material, hard_edge_angle, known, slot_point, point_statistics,
+                                        light_colors, field_error, radiance, emitted);
     replace_corners(elements, material, hard_edge_angle, slot_value, known, colors);
     replace_corners(elements, material, hard_edge_angle, slot_light, known, light_colors);
     for (std::size_t i = 0; i < points.size(); ++i)

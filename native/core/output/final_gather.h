@@ -57,6 +57,7 @@
 #pragma once
 
 #include "output/final_gather_settings.h"
+#include "output/gather_statistics.h"
 #include "output/interpolation.h"
 #include "transport/lights.h"
 #include "transport/world.h"
@@ -74,11 +75,12 @@ struct GatherCounts {
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
 /// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
 /// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
-/// each later pass; throws Cancelled.
+/// each later pass; throws Cancelled. `statistics`, if given, takes what the gather found at the
+/// output corners besides their colours (gather_statistics.h).
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
                           const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                           const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                           float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                          const ProgressFn& progress);
+                          const ProgressFn& progress, GatherStatistics* statistics = nullptr);
 
 }  // namespace radiosity::detail

@@ -48,6 +48,26 @@ def block_on_floor_arrays():
     return v, offsets, corners, reflectance, emission
 
 
+def lit_box_arrays(cells=4):
+    """A 1 m box of inward quads, `cells` x `cells` a side, reflectance 0.6, its ceiling emitting."""
+    positions, corners, emission = [], [], []
+    sides = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 1), (0, 1, 0), (1, 0, 0)),  # floor, ceiling
+             ((0, 0, 0), (0, 1, 0), (0, 0, 1)), ((1, 0, 0), (0, 0, 1), (0, 1, 0)),
+             ((0, 0, 0), (0, 0, 1), (1, 0, 0)), ((0, 1, 0), (1, 0, 0), (0, 0, 1))]
+    for side, (origin, a, b) in enumerate(sides):
+        origin, a, b = (np.array(x, dtype=np.float64) for x in (origin, a, b))
+        for i in range(cells):
+            for j in range(cells):
+                corners.extend(range(len(positions), len(positions) + 4))
+                positions += [origin + a * (i + du) / cells + b * (j + dv) / cells
+                              for du, dv in ((0, 0), (1, 0), (1, 1), (0, 1))]
+                emission.append([2.0] * 3 if side == 1 else [0.0] * 3)
+    faces = len(emission)
+    return (np.array(positions, dtype=np.float32), np.arange(0, 4 * faces + 1, 4, dtype=np.int32),
+            np.array(corners, dtype=np.int32), np.full((faces, 3), 0.6, dtype=np.float32),
+            np.array(emission, dtype=np.float32))
+
+
 def fronts(result, key="element_radiance"):
     """`key` of the elements that are not an emitting polygon's back side: emitting polygons are
     two-sided, and an emitting box's back sides face out (their radiance is their emission)."""
@@ -70,10 +90,32 @@ class FurnaceTest(unittest.TestCase):
         result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
                             tolerance=1e-7, final_gather=True, gather_rays=64, gather_shadow_rays=16)
         np.testing.assert_allclose(result["corner_radiance"], emitted / (1.0 - rho), rtol=1e-4)
-        self.assertEqual(result["final_gather"], {"points": 24, "buried": 0})
+        gather = result["final_gather"]
+        self.assertEqual((gather["points"], gather["buried"]), (24, 0))
         self.assertNotIn("final_gather", _core.bake(*box_arrays(), element_size=0.5, resolution=16))
         with self.assertRaisesRegex(ValueError, "gather_rays"):
             _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_rays=0)
+
+    def test_final_gathers_statistics_in_the_furnace(self):
+        """What the error estimate reads: every ray sees the walls' reflected light L - E, so each
+        corner's indirect share is exactly rho (L - E), its rays do not differ, the field (gathered
+        at the element vertices) carries every element's light and has no noise to pass on."""
+        rho, emitted = 0.6, 2.0
+        light = emitted / (1.0 - rho)
+        for field_rays in (0, 16):
+            result = _core.bake(*box_arrays(rho=rho, emitted=emitted), element_size=0.25, resolution=64,
+                                tolerance=1e-7, final_gather=True, gather_rays=64, gather_shadow_rays=16,
+                                gather_field_rays=field_rays)
+            gather = result["final_gather"]
+            for key in ("solution_light", "indirect", "variance", "field_noise"):
+                self.assertEqual(gather[key].shape, result["corner_radiance"].shape, key)
+            np.testing.assert_allclose(gather["solution_light"], (light - emitted) / rho, rtol=1e-4)
+            np.testing.assert_allclose(gather["indirect"], rho * (light - emitted), rtol=1e-4)
+            np.testing.assert_allclose(gather["variance"], 0.0, atol=1e-9)
+            np.testing.assert_allclose(gather["field_noise"], 0.0, atol=1e-9)
+            self.assertEqual(gather["element_field_error"].shape, (result["elements"], 3))
+            np.testing.assert_allclose(gather["element_field_error"], 0.0, atol=1e-4)
+            np.testing.assert_allclose(gather["element_reflected"][~result["element_back"]], light - emitted, rtol=1e-4)
 
     def test_emitters_lit_directly_meet_the_furnace(self):
         """Every element of the box is smaller than direct_emitter_area, so each lights the others
@@ -95,6 +137,25 @@ class FurnaceTest(unittest.TestCase):
             with self.subTest(method=method):
                 result = _core.bake(*arrays, element_size=0.5, resolution=32, method=method, tolerance=1e-8)
                 np.testing.assert_allclose(fronts(result), 2.0, rtol=1e-5)
+
+
+class GatherStatisticsTest(unittest.TestCase):
+    def test_final_gathers_sampling_variance_is_its_rays_error(self):
+        """The variance a corner's 64 rays give its colour, from their two halves, against what they
+        actually miss: the same bake (same solution) gathered with 128 times the rays."""
+        def bake(rays):
+            return _core.bake(*lit_box_arrays(), element_size=0.125, resolution=64, tolerance=1e-7,
+                              final_gather=True, gather_rays=rays, gather_shadow_rays=64)
+        coarse, fine = bake(64), bake(8192)
+        luminance = np.array([0.2126, 0.7152, 0.0722])
+        reflecting = fine["corner_radiance"] @ luminance < fine["corner_light"] @ luminance  # not the ceiling
+        value = fine["corner_radiance"][reflecting] @ luminance
+        missed = (coarse["corner_radiance"] - fine["corner_radiance"])[reflecting] @ luminance / value
+        estimated = np.sqrt(coarse["final_gather"]["variance"][reflecting]) @ luminance / value
+        ratio = math.sqrt(np.mean(estimated ** 2) / np.mean(missed ** 2))
+        self.assertGreater(np.sqrt(np.mean(missed ** 2)), 0.005)  # 64 rays miss about 1% here
+        self.assertGreater(ratio, 0.7)
+        self.assertLess(ratio, 1.4)
 
 
 class OutputShapesTest(unittest.TestCase):
