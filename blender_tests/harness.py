@@ -134,6 +134,30 @@ def run(*tests):
         raise RuntimeError("failed: " + ", ".join(failures))
 
 
+def drive_steps(steps, time_limit=None):
+    """Registers a timer that advances the generator `steps` every 0.2 s (it yields while Blender
+    runs its window) and ends the process with the verdict: 0 when it finishes, 1 after printing the
+    traceback of what it raised, or of running past `time_limit` seconds. Windowed Blender has no
+    --python-exit-code for timers."""
+    started = time.monotonic()
+
+    def drive():
+        try:
+            if time_limit is not None and time.monotonic() - started > time_limit:
+                raise TimeoutError("took longer than %d s" % time_limit)
+            next(steps)
+            return 0.2
+        except StopIteration:
+            code = 0
+        except Exception:
+            traceback.print_exc()
+            code = 1
+        sys.stdout.flush()
+        os._exit(code)
+
+    bpy.app.timers.register(drive, first_interval=1.0)
+
+
 def corner_positions(mesh):
     """(loops, 3) float array: the position of each face corner's vertex."""
     import numpy as np

@@ -13,7 +13,6 @@ import os
 import subprocess
 import sys
 import time
-import traceback
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -99,20 +98,4 @@ def steps():
     print("PASS one undo removes the bake", flush=True)
 
 
-def drive(generator=steps(), started=time.monotonic()):
-    try:
-        if time.monotonic() - started > TIME_LIMIT:
-            raise TimeoutError("interactive test took longer than %d s" % TIME_LIMIT)
-        next(generator)
-        return 0.2
-    except StopIteration:
-        code = 0
-    except Exception:
-        traceback.print_exc()
-        code = 1
-    # Windowed Blender has no --python-exit-code for timers: end the process with the verdict.
-    sys.stdout.flush()
-    os._exit(code)
-
-
-bpy.app.timers.register(drive, first_interval=1.0)
+harness.drive_steps(steps(), TIME_LIMIT)

@@ -14,7 +14,6 @@ import importlib
 import os
 import sys
 import time
-import traceback
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender_tests"))
 
@@ -85,17 +84,4 @@ def steps():
     print(line("20 ms timer lateness", lateness), flush=True)
 
 
-def drive(generator=steps()):
-    try:
-        next(generator)
-        return 0.2
-    except StopIteration:
-        code = 0
-    except Exception:
-        traceback.print_exc()
-        code = 1
-    sys.stdout.flush()
-    os._exit(code)
-
-
-bpy.app.timers.register(drive, first_interval=1.0)
+harness.drive_steps(steps())

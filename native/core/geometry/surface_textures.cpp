@@ -178,27 +178,8 @@ FaceTextures::FaceTextures(const SceneInput& in) : input_(in), uv_(in.face_count
 
 FaceTextures::~FaceTextures() = default;
 
-SurfaceColour FaceTextures::mean(std::size_t f, const Vec3* points, int count) const {
-    std::vector<UV> footprint;
-    for (int k = 0; k < count; ++k) footprint.push_back(uv_[f]->at(DVec3(points[k])));
-    const std::array<Role, 2> role = roles(input_);
-    SurfaceColour out;
-    for (std::size_t which = 0; which < role.size(); ++which) {
-        const Role& r = role[which];
-        Rgb& value = which == 0 ? out.reflectance : out.emission;
-        if (r.of(f) < 0) {
-            value = Rgb(r.value[3 * f], r.value[3 * f + 1], r.value[3 * f + 2]);
-            continue;
-        }
-        const TextureLevels& image = levels_[std::size_t(r.of(f))];
-        value = r.colour(f, footprint_mean(image.level(level_for(footprint, image.level(0))), footprint), image.mean());
-    }
-    return out;
-}
-
-SurfaceColour FaceTextures::at(std::size_t f, const Vec3& x) const { return at_uv(f, uv_[f]->at(DVec3(x))); }
-
-SurfaceColour FaceTextures::at_uv(std::size_t f, const UV& uv) const {
+template <typename Read>
+SurfaceColour FaceTextures::colours(std::size_t f, const Read& read) const {
     const std::array<Role, 2> role = roles(input_);
     SurfaceColour out;
     for (std::size_t which = 0; which < role.size(); ++which) {
@@ -209,9 +190,24 @@ SurfaceColour FaceTextures::at_uv(std::size_t f, const UV& uv) const {
             continue;
         }
         const std::size_t t = std::size_t(r.of(f));
-        value = r.colour(f, texel(input_.textures->textures[t], float(uv.x), float(uv.y)), levels_[t].mean());
+        value = r.colour(f, read(t), levels_[t].mean());
     }
     return out;
+}
+
+SurfaceColour FaceTextures::mean(std::size_t f, const Vec3* points, int count) const {
+    std::vector<UV> footprint;
+    for (int k = 0; k < count; ++k) footprint.push_back(uv_[f]->at(DVec3(points[k])));
+    return colours(f, [&](std::size_t t) {
+        const TextureLevels& image = levels_[t];
+        return footprint_mean(image.level(level_for(footprint, image.level(0))), footprint);
+    });
+}
+
+SurfaceColour FaceTextures::at(std::size_t f, const Vec3& x) const { return at_uv(f, uv_[f]->at(DVec3(x))); }
+
+SurfaceColour FaceTextures::at_uv(std::size_t f, const UV& uv) const {
+    return colours(f, [&](std::size_t t) { return texel(input_.textures->textures[t], float(uv.x), float(uv.y)); });
 }
 
 void texture_elements(const SceneInput& in, Elements& elements, const ProgressFn& progress) {

@@ -40,6 +40,11 @@ public:
     SurfaceColour at_uv(std::size_t face, const glm::dvec2& uv) const;
 
 private:
+    /// Face f's reflectance and emission: each its flat value, or where a texture gives it, its
+    /// colour of `read(texture index)`.
+    template <typename Read>
+    SurfaceColour colours(std::size_t f, const Read& read) const;
+
     const SceneInput& input_;
     std::vector<std::unique_ptr<PolygonUv>> uv_;  ///< per face; null where no texture varies it
     std::vector<TextureLevels> levels_;           ///< per texture

@@ -1,6 +1,8 @@
 /// @file corner_wedges.cpp
-/// @brief Direct light tables around the element corners on seams (corner_wedges.h).
+/// @brief Tables of the light around the element corners on seams (corner_wedges.h).
 #include "output/corner_wedges.h"
+
+#include "output/corner_blend.h"
 
 #include <glm/geometric.hpp>
 
@@ -12,7 +14,7 @@ namespace radiosity::detail {
 namespace {
 
 /// Corner k's distances (a, b) along its two edges (to corner k + 1 and to corner k - 1) of the
-/// point at the ray tracer's (u, v) in element e: the weights radiance_near gives the corners.
+/// point at the ray tracer's (u, v) in element e, whose corners blend as corner_weights says.
 std::pair<double, double> along_edges(bool triangle, int k, double u, double v) {
     if (triangle) {
         switch (k) {
@@ -36,21 +38,6 @@ std::pair<double, double> along_edges(bool triangle, int k, double u, double v) 
     }
 }
 
-/// The weight of corner k at (u, v), as radiance_near blends the corners.
-double corner_weight(bool triangle, int k, double u, double v) {
-    if (triangle) return k == 0 ? 1.0 - u - v : k == 1 ? u : v;
-    switch (k) {
-        case 0:
-            return (1.0 - u) * (1.0 - v);
-        case 1:
-            return u * (1.0 - v);
-        case 2:
-            return u * v;
-        default:
-            return (1.0 - u) * v;
-    }
-}
-
 }  // namespace
 
 Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, double s) {
@@ -67,7 +54,7 @@ Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, doub
     return corner + hair * direction;
 }
 
-void CornerWedges::fill(const Elements& elements, std::size_t slot, const FillTable& fill) {
+void CornerWedges::fill_table(const Elements& elements, std::size_t slot, const FillTable& fill) {
     const std::size_t e = slot / 4;
     const int k = int(slot % 4);
     std::array<Vec3, kBins> points;
@@ -78,6 +65,7 @@ void CornerWedges::fill(const Elements& elements, std::size_t slot, const FillTa
 Rgb CornerWedges::correction(const Elements& elements, std::size_t element, float u, float v) const {
     const bool triangle = elements.is_triangle(element);
     const double uu = std::clamp(double(u), 0.0, 1.0), vv = std::clamp(double(v), 0.0, 1.0);
+    const std::array<double, 4> weight = corner_weights(elements, element, u, v);
     Rgb sum(0.0);
     for (int k = 0; k < elements.corner_count(element); ++k) {
         const int32_t first = table_of_slot_[4 * element + std::size_t(k)];
@@ -91,7 +79,7 @@ Rgb CornerWedges::correction(const Elements& elements, std::size_t element, floa
         const double t = std::clamp(position - low, 0.0, 1.0);
         const Rgb* table = &values_[std::size_t(first)];
         const Rgb there = (1.0 - t) * table[low] + t * table[high];
-        sum += corner_weight(triangle, k, uu, vv) * there;
+        sum += weight[std::size_t(k)] * there;
     }
     return elements.reflectance[element] * sum;
 }

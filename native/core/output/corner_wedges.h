@@ -45,7 +45,7 @@ public:
 private:
     /// The point a hair from corner k of element e, at parametric angle s in [0, 1] across its corner.
     static Vec3 point_at(const Elements& elements, std::size_t e, int k, double s);
-    void fill(const Elements& elements, std::size_t slot, const FillTable& fill);
+    void fill_table(const Elements& elements, std::size_t slot, const FillTable& fill);
 
     std::vector<int32_t> table_of_slot_;  ///< slot 4 e + k -> its first value, or -1
     std::vector<Rgb> values_;             ///< kBins values per table, at parametric angles (i + 0.5) / kBins
@@ -65,7 +65,7 @@ CornerWedges::CornerWedges(const Elements& elements, const std::vector<uint8_t>&
             }
     }
     values_.resize(slots.size() * kBins);
-    parallel(slots.size(), [&](std::size_t t) { this->fill(elements, slots[t], fill); });
+    parallel(slots.size(), [&](std::size_t t) { fill_table(elements, slots[t], fill); });
 }
 
 }  // namespace radiosity::detail

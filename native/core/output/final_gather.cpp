@@ -6,6 +6,7 @@
 #include "common/stratified.h"
 #include "geometry/weld.h"
 #include "output/corner_approach.h"
+#include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "transport/lamp_points.h"
 #include "transport/near_field.h"
@@ -147,11 +148,7 @@ public:
     /// a point at `place` is.
     DirectParts direct_at(const Vec3& x, std::size_t e, uint32_t place) const {
         const Vec3 n = elements_.normal[e];
-        DirectParts parts{emitter_groups(x, n), {}, Rgb(0.0)};
-        for (const EmitterGroup& group : parts.emitters.groups)
-            parts.share.push_back(visible_share(parts.emitters, group, lifted(x, n), n, mix_seed(place, 0x5EEDU)));
-        if (!lights_.empty()) parts.lamps = lamp_irradiance(lights_, visibility_, x, n) / M_PI;
-        return parts;
+        return direct_parts(x, lifted(x, n), n, mix_seed(place, 0x5EEDU));
     }
 
     /// How much more direct light arrives at `x`, a hair inside element `e` next to the point of
@@ -252,15 +249,9 @@ private:
 
     /// The weights radiance_near gives the hit element's corner slots.
     void add_weights(const hr::Visibility::Hit& hit, std::vector<std::pair<int32_t, double>>& slots) const {
-        const int32_t h = hit.patch;
-        const double u = std::clamp(double(hit.u), 0.0, 1.0), v = std::clamp(double(hit.v), 0.0, 1.0);
-        if (elements_.is_triangle(std::size_t(h))) {
-            for (const auto& [k, w] : {std::pair{0, 1.0 - u - v}, {1, u}, {2, v}}) slots.emplace_back(4 * h + k, w);
-        } else {
-            for (const auto& [k, w] :
-                 {std::pair{0, (1.0 - u) * (1.0 - v)}, {1, u * (1.0 - v)}, {2, u * v}, {3, (1.0 - u) * v}})
-                slots.emplace_back(4 * h + k, w);
-        }
+        const std::size_t h = std::size_t(hit.patch);
+        const std::array<double, 4> w = corner_weights(elements_, h, hit.u, hit.v);
+        for (int k = 0; k < elements_.corner_count(h); ++k) slots.emplace_back(int32_t(4 * h) + k, w[std::size_t(k)]);
     }
 
     /// `hit`, or where it is on an emitting polygon's element seen from behind, the same point of
@@ -279,13 +270,23 @@ private:
     /// Emitting elements at x (exact unoccluded factors times their visible share), lamps and the
     /// world (EmitterGroups).
     Rgb direct(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        const EmitterGroups groups = emitter_groups(x, normal);
+        const DirectParts parts = direct_parts(x, origin, normal, seed);
         Rgb light(0.0);
-        for (const EmitterGroup& group : groups.groups)
-            light += group.light * visible_share(groups, group, origin, normal, seed);
-        if (!lights_.empty()) light += lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        for (std::size_t g = 0; g < parts.share.size(); ++g) light += parts.emitters.groups[g].light * parts.share[g];
+        light += parts.lamps;
         if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
         return light;
+    }
+
+    /// The emitters' light at x (each group's exact unoccluded light and visible share from `origin`)
+    /// and the lamps'.
+    DirectParts direct_parts(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
+        DirectParts parts{emitter_groups(x, normal), {}, Rgb(0.0)};
+        for (const EmitterGroup& group : parts.emitters.groups)
+            parts.share.push_back(visible_share(parts.emitters, group, origin, normal, seed));
+        if (!lights_.empty())
+            parts.lamps = lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+        return parts;
     }
 
     /// Each run of emitting elements of one polygon (a group) seen from x: its exact unoccluded light
@@ -362,10 +363,7 @@ private:
     Rgb radiance_near(const hr::Visibility::Hit& hit) const {
         const std::size_t h = std::size_t(hit.patch);
         if (elements_.is_back(h)) return radiance_[h];  // not written, so no corner colours
-        const double u = std::clamp(double(hit.u), 0.0, 1.0), v = std::clamp(double(hit.v), 0.0, 1.0);
-        const Rgb* c = &corner_field_[4 * h];
-        if (elements_.is_triangle(h)) return (1.0 - u - v) * c[0] + u * c[1] + v * c[2];
-        return (1.0 - u) * (1.0 - v) * c[0] + u * (1.0 - v) * c[1] + u * v * c[2] + (1.0 - u) * v * c[3];
+        return blend_corners(elements_, h, &corner_field_[4 * h], hit.u, hit.v);
     }
 
     /// What the light around the hit element's corners on seams adds (corner_wedges.h).

@@ -3,6 +3,7 @@
 #include "output/gather_statistics.h"
 
 #include "common/stratified.h"
+#include "output/corner_blend.h"
 #include "output/interpolation.h"
 
 #include <algorithm>
@@ -14,11 +15,7 @@ void RaySpread::add(int ray, const Rgb& sample, const hr::Visibility::Hit& hit) 
     difference_ += ((ray % grid_) + (ray / grid_)) % 2 == 0 ? sample : -sample;
     const std::size_t h = std::size_t(hit.patch);
     if (statistics_->probe == nullptr || elements_.is_back(h)) return;  // a back side reads its solved value
-    const double u = std::clamp(double(hit.u), 0.0, 1.0), v = std::clamp(double(hit.v), 0.0, 1.0);
-    const Rgb* c = &(*statistics_->probe)[4 * h];
-    probe_ += elements_.is_triangle(h)
-                  ? (1.0 - u - v) * c[0] + u * c[1] + v * c[2]
-                  : (1.0 - u) * (1.0 - v) * c[0] + u * (1.0 - v) * c[1] + u * v * c[2] + (1.0 - u) * v * c[3];
+    probe_ += blend_corners(elements_, h, &(*statistics_->probe)[4 * h], hit.u, hit.v);
 }
 
 void RaySpread::finish(const Rgb& indirect, int rays) const {
