@@ -8,8 +8,8 @@
 #include "output/corner_approach.h"
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
+#include "output/emitter_groups.h"
 #include "transport/lamp_points.h"
-#include "transport/near_field.h"
 #include "transport/world_light.h"
 #include "visibility/ray_tracer.h"
 #include "visibility/shadow_ray.h"
@@ -24,17 +24,6 @@
 
 namespace radiosity::detail {
 namespace {
-
-/// An element that emits: its corners and what direct light needs of it.
-struct Emitter {
-    int32_t element;
-    std::array<glm::dvec3, 4> polygon;
-    int count;
-    glm::dvec3 normal;
-    Rgb radiance;
-    int32_t polygon_index;  ///< the input polygon it came from
-    double area;
-};
 
 /// What a point's rays read of the corner field right at the seams next to it (closer than kSeam
 /// of the element hit): the light there is the seam vertices' own gathered light, so the point's
@@ -57,18 +46,6 @@ std::vector<int32_t> twins(const Elements& elements) {
     return twin;
 }
 
-/// A run of emitting elements of one polygon seen from a point (Gatherer::emitter_groups).
-struct EmitterGroup {
-    std::size_t first, last;  ///< its emitters
-    Rgb light{0.0};           ///< its exact unoccluded light at the point
-    double area = 0.0;        ///< of its elements that face the point
-};
-struct EmitterGroups {
-    std::vector<EmitterGroup> groups;
-    std::vector<double> factor;  ///< each emitter's exact unoccluded factor (0: it does not face the point)
-    double total = 0.0;          ///< the groups' light, summed over their largest channels
-};
-
 /// The direct light at a point, in parts (Gatherer::direct_at): what a nearby point's light is
 /// compared with.
 struct DirectParts {
@@ -83,7 +60,8 @@ public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const hr::Visibility& visibility, float scene_size, const CornerWedges* wedges = nullptr)
+             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, float scene_size,
+             const CornerWedges* wedges = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -91,6 +69,7 @@ public:
           lights_(lights),
           world_(world),
           emitters_(emitters),
+          runs_(runs),
           visibility_(visibility),
           wedges_(wedges),
           scene_size_(scene_size),
@@ -279,37 +258,16 @@ private:
     }
 
     /// The emitters' light at x (each group's exact unoccluded light and visible share from `origin`)
-    /// and the lamps'.
+    /// and the lamps'. The factors are taken at `origin` too: at x itself, which lies in its own
+    /// element's plane, round-off may put x in front of that element's back side (an emitter that
+    /// emits from both sides), whose factor from a point in its plane is then the whole hemisphere.
     DirectParts direct_parts(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        DirectParts parts{emitter_groups(x, normal), {}, Rgb(0.0)};
+        DirectParts parts{emitter_groups(emitters_, runs_, glm::dvec3(origin), glm::dvec3(normal)), {}, Rgb(0.0)};
         for (const EmitterGroup& group : parts.emitters.groups)
             parts.share.push_back(visible_share(parts.emitters, group, origin, normal, seed));
         if (!lights_.empty())
             parts.lamps = lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
         return parts;
-    }
-
-    /// Each run of emitting elements of one polygon (a group) seen from x: its exact unoccluded light
-    /// and its elements' factors.
-    EmitterGroups emitter_groups(const Vec3& x, const Vec3& normal) const {
-        const glm::dvec3 xd(x), nd(normal);
-        EmitterGroups seen;
-        seen.factor.assign(emitters_.size(), 0.0);
-        for (std::size_t i = 0; i < emitters_.size(); ++i) {
-            const Emitter& source = emitters_[i];
-            if (seen.groups.empty() || emitters_[seen.groups.back().first].polygon_index != source.polygon_index ||
-                emitters_[seen.groups.back().first].normal != source.normal)
-                seen.groups.push_back({i, i});
-            EmitterGroup& group = seen.groups.back();
-            group.last = i + 1;
-            const double f = point_to_polygon(xd, nd, source.polygon.data(), source.count, source.normal);
-            if (!(f > 0.0)) continue;
-            seen.factor[i] = f;
-            group.light += source.radiance * f;
-            group.area += source.area;
-        }
-        for (const EmitterGroup& group : seen.groups) seen.total += max_channel(group.light);
-        return seen;
     }
 
     /// The share of `group` that shadow rays from `origin` find unhidden. The group gets its share of
@@ -328,7 +286,7 @@ private:
         int clear = 0, cast = 0;
         std::array<Vec3, 256> points;
         for (std::size_t i = group.first; i < group.last; ++i) {
-            if (groups.factor[i] == 0.0) continue;
+            if (!groups.faces[i]) continue;
             const Emitter& source = emitters_[i];
             covered += source.area;
             int picks = 0;
@@ -390,6 +348,7 @@ private:
     const Lights& lights_;
     const WorldSampler& world_;
     const std::vector<Emitter>& emitters_;
+    const std::vector<EmitterRun>& runs_;
     const hr::Visibility& visibility_;
     const CornerWedges* wedges_;
     float scene_size_;
@@ -551,20 +510,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     }
     const float scene_size = std::max(glm::length(high - low), 1e-6f);
     const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
-    std::vector<Emitter> emitters;
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-        if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;
-        Emitter source{int32_t(e),
-                       {},
-                       elements.corner_count(e),
-                       glm::dvec3(elements.normal[e]),
-                       emitted[e],
-                       elements.polygon[e],
-                       double(elements.area[e])};
-        for (int k = 0; k < source.count; ++k)
-            source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
-        emitters.push_back(source);
-    }
+    const std::vector<Emitter> emitters = emitting_elements(elements, emitted);
+    const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
     // Polygon centres (area-weighted element centres) for points buried at their element.
     std::vector<glm::dvec3> polygon_sum;
@@ -597,7 +544,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, visibility, scene_size);
+                                      field_settings, emitters, runs, visibility, scene_size);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
@@ -606,7 +553,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, visibility, scene_size);
+                                      emitters, runs, visibility, scene_size);
         wedges = wedge_tables(wedge_gatherer, elements, seam, place, element_at, approach, progress);
     }
     const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
@@ -635,7 +582,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
-                                visibility, scene_size, &wedges);
+                                runs, visibility, scene_size, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);

@@ -94,14 +94,15 @@ double point_to_polygon(const DVec3& x, const DVec3& n, const DVec3* polygon, in
     Polygon clipped;
     const int m = clip_to_hemisphere(x, n, polygon, count, clipped);
     double sum = 0.0;
-    for (int k = 0; k < m; ++k) {
-        const DVec3 a = clipped[k] - x, b = clipped[(k + 1) % m] - x;
-        const DVec3 ab = glm::cross(a, b);
-        const double length = glm::length(ab);
-        if (!(length > 0.0)) continue;  // collinear with the point: the edge subtends no angle
-        sum += std::atan2(length, glm::dot(a, b)) * glm::dot(n, ab) / length;
-    }
+    for (int k = 0; k < m; ++k) sum += contour_term(n, clipped[k] - x, clipped[(k + 1) % m] - x);
     return std::abs(sum) / (2.0 * M_PI);
+}
+
+double contour_term(const DVec3& n, const DVec3& a, const DVec3& b) {
+    const DVec3 ab = glm::cross(a, b);
+    const double length = glm::length(ab);
+    if (!(length > 0.0)) return 0.0;  // collinear with the point: the edge subtends no angle
+    return std::atan2(length, glm::dot(a, b)) * glm::dot(n, ab) / length;
 }
 
 double area_flux(const Elements& e, int32_t i, int32_t j, int s) {

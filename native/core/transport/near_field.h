@@ -29,6 +29,11 @@ struct NearFieldSettings {
     int sub_points = 4;
 };
 
+/// One edge's term of Lambert's contour integral, seen from a point with unit normal n: the angle
+/// the edge a -> b (relative to the point) subtends, times n . (a x b) / |a x b|. A polygon's
+/// factor is the sum over its edges, in its winding, over 2 pi (in absolute value).
+double contour_term(const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b);
+
 /// Unoccluded form factor from a point x with unit normal n to a planar polygon (its front side,
 /// `polygon_normal`), Lambert's contour integral over the part of it above x's tangent plane.
 double point_to_polygon(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3* polygon, int count,

@@ -1,0 +1,116 @@
+/// @file emitter_groups.cpp
+/// @brief Emitting elements grouped by polygon side, and their exact light at a point (emitter_groups.h).
+#include "output/emitter_groups.h"
+
+#include "transport/near_field.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace radiosity::detail {
+namespace {
+
+/// Emitters of one polygon whose normals agree this well lie on one side of it.
+constexpr double kSamePlane = 0.9999;
+
+/// The run's outline, centre and radius: the directed edges of its elements whose reverse no other
+/// element of the run has (the tiles' shared edges cancel in the contour integral).
+void outline(const Elements& elements, const std::vector<Emitter>& emitters, EmitterRun& run) {
+    std::set<std::pair<int32_t, int32_t>> edges;
+    std::size_t vertex_count = 0;
+    for (std::size_t i = run.first; i < run.last; ++i) {
+        const std::size_t e = std::size_t(emitters[i].element);
+        const int count = elements.corner_count(e);
+        for (int k = 0; k < count; ++k) {
+            const int32_t a = elements.corners[e][k], b = elements.corners[e][(k + 1) % count];
+            if (!edges.erase({b, a})) edges.insert({a, b});
+            run.centre += glm::dvec3(elements.vertices[a]);
+            ++vertex_count;
+        }
+    }
+    run.centre /= double(std::max<std::size_t>(vertex_count, 1));
+    for (const auto& [a, b] : edges) {
+        const glm::dvec3 pa(elements.vertices[a]), pb(elements.vertices[b]);
+        run.outline.push_back({pa, pb});
+        run.radius = std::max({run.radius, glm::length(pa - run.centre), glm::length(pb - run.centre)});
+    }
+}
+
+}  // namespace
+
+std::vector<Emitter> emitting_elements(const Elements& elements, const std::vector<Rgb>& emitted) {
+    std::vector<Emitter> emitters;
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        if (!(max_channel(emitted[e]) > 0.0) || !(elements.area[e] > 0.0f)) continue;
+        Emitter source{int32_t(e),
+                       {},
+                       elements.corner_count(e),
+                       glm::dvec3(elements.normal[e]),
+                       emitted[e],
+                       elements.polygon[e],
+                       double(elements.area[e])};
+        for (int k = 0; k < source.count; ++k)
+            source.polygon[k] = glm::dvec3(elements.vertices[elements.corners[e][k]]);
+        emitters.push_back(source);
+    }
+    return emitters;
+}
+
+std::vector<EmitterRun> emitter_runs(const Elements& elements, const std::vector<Emitter>& emitters) {
+    std::vector<EmitterRun> runs;
+    for (std::size_t i = 0; i < emitters.size(); ++i) {
+        const Emitter& source = emitters[i];
+        if (runs.empty() || emitters[runs.back().first].polygon_index != source.polygon_index ||
+            glm::dot(emitters[runs.back().first].normal, source.normal) < kSamePlane) {
+            EmitterRun run;
+            run.first = i;
+            run.normal = source.normal;
+            run.point = source.polygon[0];
+            runs.push_back(run);
+        }
+        EmitterRun& run = runs.back();
+        run.last = i + 1;
+        run.uniform = run.uniform && source.radiance == emitters[run.first].radiance;
+    }
+    for (EmitterRun& run : runs) outline(elements, emitters, run);
+    return runs;
+}
+
+EmitterGroups emitter_groups(const std::vector<Emitter>& emitters, const std::vector<EmitterRun>& runs,
+                             const glm::dvec3& x, const glm::dvec3& n) {
+    EmitterGroups seen;
+    seen.faces.assign(emitters.size(), 0);
+    for (const EmitterRun& run : runs) {
+        EmitterGroup group{run.first, run.last};
+        // Behind the run's plane, or in it, nothing of it faces x.
+        if (glm::dot(run.normal, x - run.point) > 0.0) {
+            if (run.uniform && glm::dot(n, run.centre - x) > run.radius) {  // wholly above x's tangent plane
+                double sum = 0.0;
+                for (const auto& edge : run.outline) sum += contour_term(n, edge[0] - x, edge[1] - x);
+                group.light = emitters[run.first].radiance * (std::abs(sum) / (2.0 * M_PI));
+                for (std::size_t i = run.first; i < run.last; ++i) {
+                    seen.faces[i] = 1;
+                    group.area += emitters[i].area;
+                }
+            } else {
+                for (std::size_t i = run.first; i < run.last; ++i) {
+                    const Emitter& source = emitters[i];
+                    const double f = point_to_polygon(x, n, source.polygon.data(), source.count, source.normal);
+                    if (!(f > 0.0)) continue;
+                    seen.faces[i] = 1;
+                    group.light += source.radiance * f;
+                    group.area += source.area;
+                }
+            }
+        }
+        seen.groups.push_back(group);
+    }
+    for (const EmitterGroup& group : seen.groups) seen.total += max_channel(group.light);
+    return seen;
+}
+
+}  // namespace radiosity::detail
