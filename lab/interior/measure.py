@@ -1,4 +1,4 @@
-"""The interior of lab/interior/level.py against Cycles, in one run: a deep Cycles truth (many
+"""The interior of lab/interior/level.py (or any scene: --blend, --object) against Cycles, in one run: a deep Cycles truth (many
 seeds, cached in --truth; seeds are added until its own noise is below --truth-noise or --seeds is
 reached), Cycles at a ladder of sample counts and the add-on's presets, each timed (CPU seconds of
 this process: all threads). Error: relative RMS luminance per vertex (corner colours averaged per
@@ -79,9 +79,15 @@ def main():
     parser.add_argument("--truth-noise", type=float, default=0.003)
     parser.add_argument("--ladder", default="64,256,1024")
     parser.add_argument("--quality", default="DRAFT,MEDIUM,HIGH")
+    parser.add_argument("--blend", help="measure this scene (e.g. a level of ../shared/levels) instead of level.py's")
+    parser.add_argument("--object", default="BakeMesh", help="with --blend: the mesh object measured")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
-    obj = level.build()
+    if args.blend:
+        bpy.ops.wm.open_mainfile(filepath=args.blend)
+        obj = bpy.data.objects[args.object]
+    else:
+        obj = level.build()
     runs, seconds_per_seed = deep_truth(obj, args.truth, args.truth_samples, args.seeds, args.truth_noise)
     truth = runs.mean(axis=0)
     truth_noise = noise_of(runs)
@@ -91,9 +97,9 @@ def main():
         measured = float(np.sqrt(np.mean(((values[lit] - truth[lit]) / truth[lit]) ** 2)))
         return measured, float(np.sqrt(max(measured ** 2 - truth_noise ** 2, 0.0)))
 
-    print("interior: %d faces, %d vertices (%d lit), %d lamps; truth %d seeds x %d samples (%.0f CPU s a seed), "
+    print("%s: %d faces, %d vertices (%d lit), %d lamps; truth %d seeds x %d samples (%.0f CPU s a seed), "
           "its noise %.2f%%; load %.1f"
-          % (len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights), len(runs), args.truth_samples,
+          % (os.path.basename(args.blend or "interior"), len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights), len(runs), args.truth_samples,
              seconds_per_seed, 100 * truth_noise, os.getloadavg()[0]), flush=True)
     for samples in [int(s) for s in args.ladder.split(",") if s]:
         colors, cpu, wall = timed(lambda: harness.cycles_corner_bake(obj, samples, samples))  # not the truth's seeds
@@ -104,11 +110,14 @@ def main():
         summary, cpu, wall = timed(lambda: addon.bake(bpy.context.scene, quality=quality))
         colors = harness.corner_colors(obj.data, "Radiosity")
         measured, clean = error(luminance_per_vertex(obj.data, colors))
-        mean_ratio = float(luminance_per_vertex(obj.data, colors)[lit].mean() / truth[lit].mean())
+        baked = luminance_per_vertex(obj.data, colors)
+        mean_ratio = float(baked[lit].mean() / truth[lit].mean())
+        median = float(np.median(np.abs(baked[lit] / truth[lit] - 1)))
         print("%-6s %5d elements, %s, resolution %d: %6.1f CPU s, %6.1f wall s: %.2f%% (%.2f%% without the "
-              "truth's noise), mean %.4f of the truth"
+              "truth's noise), mean %.4f of the truth, median per vertex %.2f%%"
               % (quality, summary["elements"], summary["method"], summary["resolution"], cpu, wall, 100 * measured,
-                 100 * clean, mean_ratio), flush=True)
+                 100 * clean, mean_ratio, 100 * median), flush=True)
+        print("seconds:", {k: round(v, 2) for k, v in summary.get("seconds", {}).items()}, flush=True)
     print("load %.1f" % os.getloadavg()[0])
 
 

@@ -202,19 +202,17 @@ def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
 def choose(settings, exported, media=()):
     """The Choice for `settings` (pipeline.settings_of) on `exported`; `media`: the media's grids
     as `_core.bake` takes them (a zonal bake, whose core call takes no stability settings). With a
-    preset and the final gather, the preset's gathered solution, unless its form factors would not
-    fit the memory budget (the hierarchy, which has no gather, then bakes the preset's own)."""
+    preset and the final gather, the preset's gathered solution, whichever method solves it: the
+    gather writes the output corners of the uniform and the hierarchical bake alike."""
     size = scene_size(exported)
-    zonal = len(media) > 0
     preset = PRESETS.get(settings["quality"])
-    # The gather sets the mesh's own corners: the hierarchy gathers at its corners itself, the zonal
-    # bake has no gather, and Subdivided Copies show every element's corners, most not gathered.
-    may_gather = settings["final_gather"] and not zonal and settings["target"] == "ORIGINAL"
-    if preset is not None and may_gather:
-        choice = _choose(settings, exported, media, size, preset, gathered=True)
-        if choice.method != "hierarchical":
-            return choice
-    return _choose(settings, exported, media, size, preset, gathered=False)
+    return _choose(settings, exported, media, size, preset, gathered=preset is not None and gathers(settings, media))
+
+
+def gathers(settings, media):
+    """Whether the final gather writes the output: it sets the mesh's own corners (Subdivided Copies
+    show every element's corners, most not gathered), and the zonal bake has none."""
+    return bool(settings["final_gather"]) and len(media) == 0 and settings["target"] == "ORIGINAL"
 
 
 def _choose(settings, exported, media, size, preset, gathered):
@@ -263,7 +261,7 @@ def _choose(settings, exported, media, size, preset, gathered):
                          "progressive refinement for scenes with media")
     if method == "hierarchical":  # visibility by ray tracing: no hemi-cubes
         chosen = Resolution(resolution, 1, "not used, the hierarchical method traces rays")
-    gathers = settings["final_gather"] and method != "hierarchical" and not zonal and settings["target"] == "ORIGINAL"
+    gather = gathers(settings, media)
     return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance,
                   refine_tolerance=refine_tolerance, method=method,
                   elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
@@ -271,7 +269,7 @@ def _choose(settings, exported, media, size, preset, gathered):
                   resolution_reason=chosen.reason,
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
-                  gather_rays=rays if gathers else 0, gather_field_rays=field_rays if gathers else 0,
+                  gather_rays=rays if gather else 0, gather_field_rays=field_rays if gather else 0,
                   gather_shadow_rays=shadow_rays,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 

@@ -1,9 +1,8 @@
 /// @file bake.cpp
 /// @brief The uniform bake pipeline: elements, form factors (stored or on demand), solve, corners.
+#include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
-#include "geometry/surface_textures.h"
-#include "output/final_gather.h"
 #include "transport/small_emitters.h"
 
 #include <algorithm>
@@ -110,24 +109,7 @@ BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, c
     for (std::size_t e = 0; e < small_light.size(); ++e)
         elements.emission[e] -= elements.reflectance[e] * small_light[e];
 
-    start = Clock::now();
-    result.colors = interpolate_corners(elements, result.solve.radiance, input.material, settings.hard_edge_angle);
-    result.light_colors = interpolate_corners(elements, light_arriving(elements, result.solve.radiance, emitted),
-                                              input.material, settings.hard_edge_angle);
-    result.seconds_interpolate = seconds_since(start);
-
-    if (settings.final_gather.enabled) {
-        start = Clock::now();
-        const detail::GatherCounts counts = detail::final_gather(
-            elements, emitted, result.solve.radiance, settings.lights, settings.world, settings.final_gather,
-            input.material, input.face_offsets, input.face_count, settings.hard_edge_angle, result.colors,
-            result.light_colors, progress, &result.gather_statistics.emplace());
-        result.gathered_points = counts.gathered;
-        result.buried_points = counts.buried;
-        result.seconds_gather = seconds_since(start);
-    }
-    // Textured faces show their texel at each corner, lit by the light arriving there.
-    if (input.textures) detail::texture_corners(input, elements, result.light_colors, result.colors);
+    output_pass(input, settings, elements, emitted, result, progress);
     return result;
 }
 

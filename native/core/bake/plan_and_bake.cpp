@@ -1,6 +1,7 @@
 /// @file plan_and_bake.cpp
 /// @brief plan() and bake(): the pipeline the settings choose, and its result in one shape.
 #include "bake/media_bake.h"
+#include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
 #include <utility>
@@ -16,7 +17,8 @@ void check(const BakeSettings& settings) {
         throw InputError("the hierarchical method does not bake media (fog, smoke) yet: use a uniform method");
 }
 
-/// The hierarchy's result in bake()'s shape: the leaves are the elements.
+/// The hierarchy's result in bake()'s shape: the leaves are the elements (the corners' colours as
+/// the hierarchy made them, unless the output pass makes them).
 BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     BakeResult result;
     result.build = BuildResult{std::move(hierarchy.output), std::move(hierarchy.build.skipped)};
@@ -68,6 +70,7 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings) {
     h.limits = settings.limits;
     h.lights = settings.lights;
     h.world = settings.world;
+    h.gathered_output = settings.final_gather.enabled;  // the output pass gathers the leaves' corners
     return h;
 }
 
@@ -90,8 +93,14 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
 
 BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     check(settings);
-    if (settings.hierarchical.enabled)
-        return as_bake_result(bake_hierarchical(input, detail::hierarchy_settings(settings), progress));
+    if (settings.hierarchical.enabled) {
+        HierarchyResult hierarchy = bake_hierarchical(input, detail::hierarchy_settings(settings), progress);
+        const std::vector<Rgb> emitted = std::move(hierarchy.output_emitted);
+        BakeResult result = as_bake_result(std::move(hierarchy));
+        if (settings.final_gather.enabled)
+            detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
+        return result;
+    }
     if (with_media(settings)) {
         const MediaSettings& m = settings.media;
         return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress, m.grid_subdivision,

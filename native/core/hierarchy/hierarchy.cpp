@@ -75,6 +75,42 @@ void check_output(const HierarchyResult& result) {
         if (!finite(c)) throw NumericalError("output", -1);
 }
 
+/// Throws NumericalError for the output stage if any element's radiance is not finite.
+void check_radiance(const HierarchyResult& result) {
+    for (std::size_t e = 0; e < result.output.size(); ++e)
+        if (!finite(result.output_radiance[e])) throw NumericalError("output", result.output.polygon[e]);
+}
+
+/// The corners' colours from the hierarchy itself: the lamps' light (and the world's) as it is at
+/// each output corner, the links' light as their geometry and the corner's rays shape it there; the
+/// rest (light pushed down from clusters, and patches below the minimum size) interpolated from the
+/// leaves' means (hierarchy/lamp_detail.h, hierarchy/gather.h). Frees the links.
+void corner_output(hr::Tree& tree, const hr::Visibility& visibility, const HierarchySettings& settings,
+                   const SceneInput& input, const hr::LeafMesh& mesh, const std::vector<Rgb>& world_light,
+                   HierarchyResult& result, const ProgressFn& progress) {
+    const Elements& out = result.output;
+    std::vector<Rgb> corner_light = hr::lamp_light_at_corners(out, settings.lights, visibility, progress);
+    std::vector<Rgb> rest(out.size());
+    for (std::size_t e = 0; e < rest.size(); ++e) rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    if (!world_light.empty()) {
+        const std::vector<Rgb> world_at_corners =
+            detail::world_light_at_corners(out, settings.world, visibility, tree.scene_size, progress);
+        for (std::size_t k = 0; k < corner_light.size(); ++k) corner_light[k] += world_at_corners[k];
+        for (std::size_t e = 0; e < rest.size(); ++e) {
+            const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
+            if (patch >= 0) rest[e] -= out.reflectance[e] * world_light[std::size_t(patch)];
+        }
+    }
+    hr::gather_at_corners(tree, visibility, out, mesh.leaf, rest, corner_light, progress);
+    // The rest of the links, before the corner colours' welding and sets.
+    free_links(tree, [](std::size_t) { return true; });
+    result.colors = interpolate_corners(out, rest, input.material, settings.hard_edge_angle, &corner_light);
+    result.light_colors =
+        light_arriving(out, input.material, settings.hard_edge_angle, rest, result.output_emitted, corner_light);
+    // Textured faces show their texel at each corner, lit by the light arriving there.
+    if (input.textures) detail::texture_corners(input, out, result.light_colors, result.colors);
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -170,46 +206,30 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
     const double scale = hr::reference_radiance(tree);
     // Most of the memory, before lamp detail grows the nodes and the output mesh is made.
     free_links(tree, [&](std::size_t n) { return !hr::links_gathered(tree, int32_t(n)); });
-    const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
-    result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
-                                                        lamp_finest, lamp_light, progress);
+    if (!settings.gathered_output) {
+        const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
+        result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
+                                                            lamp_finest, lamp_light, progress);
+    }
     hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
     result.output = std::move(mesh.elements);
     result.output_radiance = std::move(mesh.radiance);
-    // The lamps' light is shown as it is at each corner, and the links' light as their geometry
-    // and the corner's rays shape it there; the rest (light pushed down from clusters, patches
-    // below the minimum size) is interpolated from the leaves' means (hierarchy/lamp_detail.h,
-    // hierarchy/gather.h).
     const Elements& out = result.output;
-    std::vector<Rgb> corner_light = hr::lamp_light_at_corners(out, settings.lights, visibility, progress);
     // Each element's own emission, without the first reflections of lamps and World it holds.
-    std::vector<Rgb> emitted(out.size());
-    std::vector<Rgb> rest(out.size());
-    for (std::size_t e = 0; e < rest.size(); ++e) {
-        emitted[e] = out.emission[e] - mesh.lamp_part[e];
-        rest[e] = result.output_radiance[e] - mesh.lamp_part[e];
+    result.output_emitted.resize(out.size());
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        result.output_emitted[e] = out.emission[e] - mesh.lamp_part[e];
+        const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
+        if (!world_light.empty() && patch >= 0) result.output_emitted[e] -= out.reflectance[e] * world_light[patch];
     }
-    if (!world_light.empty()) {
-        const std::vector<Rgb> world_at_corners =
-            detail::world_light_at_corners(out, settings.world, visibility, tree.scene_size, progress);
-        for (std::size_t k = 0; k < corner_light.size(); ++k) corner_light[k] += world_at_corners[k];
-        for (std::size_t e = 0; e < rest.size(); ++e) {
-            const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
-            if (patch < 0) continue;
-            const Rgb world = out.reflectance[e] * world_light[std::size_t(patch)];
-            rest[e] -= world;
-            emitted[e] -= world;
-        }
+    if (settings.gathered_output) {
+        free_links(tree, [](std::size_t) { return true; });
+        check_radiance(result);
+    } else {
+        corner_output(tree, visibility, settings, input, mesh, world_light, result, progress);
+        check_output(result);
     }
-    hr::gather_at_corners(tree, visibility, out, mesh.leaf, rest, corner_light, progress);
-    // The rest of the links, before the corner colours' welding and sets.
-    free_links(tree, [](std::size_t) { return true; });
-    result.colors = interpolate_corners(out, rest, input.material, settings.hard_edge_angle, &corner_light);
-    result.light_colors = light_arriving(out, input.material, settings.hard_edge_angle, rest, emitted, corner_light);
-    // Textured faces show their texel at each corner, lit by the light arriving there.
-    if (input.textures) detail::texture_corners(input, out, result.light_colors, result.colors);
     result.seconds_interpolate = seconds_since(start);
-    check_output(result);
 
     HierarchyStats& stats = result.stats;
     stats.patches = patches.size();

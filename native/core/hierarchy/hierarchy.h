@@ -70,6 +70,10 @@ struct HierarchySettings {
     /// Leaves may split this many levels below `min_element_size` after the solve where the
     /// lamps' light needs it (along their shadows' edges): the finest are min_element_size / 2^this.
     int lamp_detail_levels = 2;
+    /// The output's corners are left to a final gather (output/final_gather.h), which takes each
+    /// corner's direct light at the corner and reads the leaves' radiance for the indirect light:
+    /// no lamp detail, no corner colours here (HierarchyResult::colors stay empty).
+    bool gathered_output = false;
 };
 
 struct HierarchyStats {
@@ -88,8 +92,9 @@ struct HierarchyResult {
     /// so the colours have no cracks.
     Elements output;                   ///< emission: E + rho G from the lamps (their first reflection)
     std::vector<Rgb> output_radiance;  ///< per output element: its leaf's radiance
-    CornerColors colors;               ///< interpolated on the output mesh; input corners for ORIGINAL
-    CornerColors light_colors;         ///< the light arriving at the same corners, irradiance / pi
+    std::vector<Rgb> output_emitted;   ///< per output element: its own emission (no lamp's or world's reflection)
+    CornerColors colors;        ///< interpolated on the output mesh; input corners for ORIGINAL (not gathered_output)
+    CornerColors light_colors;  ///< the light arriving at the same corners, irradiance / pi (not gathered_output)
     HierarchyStats stats;
     double residual = 0.0;
     bool converged = false;

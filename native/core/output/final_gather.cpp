@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace radiosity::detail {
 namespace {
@@ -33,17 +34,14 @@ struct SeamReads {
     std::vector<std::pair<int32_t, double>> slots;  ///< (slot 4 e + k of the field, weight), each slot once
 };
 
-/// Each element's other side (-1: one-sided): add_back_sides appends the back sides in the order of
-/// their fronts.
-std::vector<int32_t> twins(const Elements& elements) {
-    std::vector<int32_t> twin(elements.size(), -1), fronts, backs;
-    for (std::size_t e = 0; e < elements.size(); ++e)
-        if (elements.has_twin(e)) (elements.is_back(e) ? backs : fronts).push_back(int32_t(e));
-    for (std::size_t k = 0; k < std::min(fronts.size(), backs.size()); ++k) {
-        twin[std::size_t(fronts[k])] = backs[k];
-        twin[std::size_t(backs[k])] = fronts[k];
-    }
-    return twin;
+/// Each element's corners as the gather's rays see them, `backs` false: every element that blocks
+/// light but the back sides, which coincide with their fronts (both sides of a patch occlude);
+/// `backs` true: only the back sides, where a ray that met a front from behind finds what it sees.
+std::vector<std::array<int32_t, 4>> ray_corners(const Elements& elements, bool backs) {
+    std::vector<std::array<int32_t, 4>> corners = blocking_corners(elements);
+    for (std::size_t e = 0; e < corners.size(); ++e)
+        if (elements.is_back(e) != backs) corners[e] = {corners[e][0], corners[e][0], corners[e][0], -1};
+    return corners;
 }
 
 /// The direct light at a point, in parts (Gatherer::direct_at): what a nearby point's light is
@@ -60,8 +58,8 @@ public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, float scene_size,
-             const CornerWedges* wedges = nullptr)
+             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility,
+             const hr::Visibility* back_sides, float scene_size, const CornerWedges* wedges = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -71,6 +69,7 @@ public:
           emitters_(emitters),
           runs_(runs),
           visibility_(visibility),
+          back_sides_(back_sides),
           wedges_(wedges),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
@@ -191,7 +190,7 @@ private:
             const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
             const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
             const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), direction);
+            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
             if (hit.patch < 0) continue;
             if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
                 const Rgb wedge = wedge_light(hit);
@@ -233,17 +232,15 @@ private:
         for (int k = 0; k < elements_.corner_count(h); ++k) slots.emplace_back(int32_t(4 * h) + k, w[std::size_t(k)]);
     }
 
-    /// `hit`, or where it is on an emitting polygon's element seen from behind, the same point of
-    /// its back side (Elements::side), which lies on it and faces the ray: which of the two
-    /// coincident elements a ray meets first is up to round-off.
-    hr::Visibility::Hit facing(hr::Visibility::Hit hit, const Vec3& direction) const {
+    /// `hit`, or where it is on an emitting polygon's element seen from behind, the back side
+    /// there, which faces the ray (its own element and parameters: a hierarchy refines the two
+    /// sides apart).
+    hr::Visibility::Hit facing(hr::Visibility::Hit hit, const Vec3& origin, const Vec3& direction) const {
         if (hit.patch < 0 || glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) return hit;
-        const int32_t other = twin_[std::size_t(hit.patch)];
-        if (other < 0) return hit;
-        // The twin's corners run the other way, (0 3 2 1) or (0 2 1): its parameters are swapped.
-        hit.patch = other;
-        std::swap(hit.u, hit.v);
-        return hit;
+        if (back_sides_ == nullptr || !elements_.has_twin(std::size_t(hit.patch))) return hit;
+        const float tolerance = 1e-5f * scene_size_ + 1e-4f * hit.distance;
+        const hr::Visibility::Hit back = back_sides_->first_hit(origin, direction, std::max(0.0f, hit.distance - tolerance));
+        return back.patch >= 0 && back.distance <= hit.distance + tolerance ? back : hit;
     }
 
     /// Emitting elements at x (exact unoccluded factors times their visible share), lamps and the
@@ -341,7 +338,6 @@ private:
     static constexpr float kSeam = 0.01f;
 
     const Elements& elements_;
-    std::vector<int32_t> twin_ = twins(elements_);
     const std::vector<Rgb>& emitted_;
     const std::vector<Rgb>& radiance_;
     const std::vector<Rgb>& corner_field_;
@@ -350,6 +346,7 @@ private:
     const std::vector<Emitter>& emitters_;
     const std::vector<EmitterRun>& runs_;
     const hr::Visibility& visibility_;
+    const hr::Visibility* back_sides_;  ///< the back sides alone (null: there are none)
     const CornerWedges* wedges_;
     float scene_size_;
     int grid_, shadow_rays_;
@@ -509,7 +506,11 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         high = glm::max(high, v);
     }
     const float scene_size = std::max(glm::length(high - low), 1e-6f);
-    const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
+    const hr::Visibility visibility(elements.vertices, ray_corners(elements, false), scene_size);
+    std::optional<hr::Visibility> backs;
+    if (std::any_of(elements.side.begin(), elements.side.end(), [](uint8_t s) { return s == Elements::kBack; }))
+        backs.emplace(elements.vertices, ray_corners(elements, true), scene_size);
+    const hr::Visibility* back_sides = backs ? &*backs : nullptr;
     const std::vector<Emitter> emitters = emitting_elements(elements, emitted);
     const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
@@ -544,7 +545,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, runs, visibility, scene_size);
+                                      field_settings, emitters, runs, visibility, back_sides, scene_size);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
@@ -553,7 +554,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, runs, visibility, scene_size);
+                                      emitters, runs, visibility, back_sides, scene_size);
         wedges = wedge_tables(wedge_gatherer, elements, seam, place, element_at, approach, progress);
     }
     const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
@@ -582,7 +583,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
-                                runs, visibility, scene_size, &wedges);
+                                runs, visibility, back_sides, scene_size, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
