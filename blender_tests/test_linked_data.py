@@ -167,6 +167,24 @@ def test_a_linked_room_baked_into_a_local_mesh_keeps_its_light_after_reopening()
                                                                        reopened.min()))
 
 
+def test_one_undo_takes_back_the_bake_and_the_local_mesh():
+    linked_room()
+    bpy.context.scene.radiosity.make_linked_local = True
+    bpy.ops.ed.undo_push(message="before bake")
+    before = harness.file_state()
+    # As a click does: scripts only push an undo step when asked (the second argument).
+    assert bpy.ops.radiosity.bake("EXEC_DEFAULT", True) == {"FINISHED"}
+    room = bpy.data.objects[("Room", None)]
+    assert room.data.color_attributes.get("Radiosity") is not None
+    bpy.ops.ed.undo()
+    assert harness.file_state() == before, "one undo did not remove the bake"
+    room = bpy.data.objects["Room"]  # undo replaces every Python reference to data
+    assert room.library is not None and room.data.library is not None, "undo left the room local"
+    bpy.ops.ed.redo()
+    room = bpy.data.objects[("Room", None)]
+    assert room.data.library is None and room.data.color_attributes.get("Radiosity") is not None, "redo lost the bake"
+
+
 def test_an_object_only_a_linked_collection_holds_is_refused_even_with_the_option():
     """File > Link of a collection, linked into the scene as it is: its objects cannot be made local
     alone (the collection holds them), so the bake says what to do instead."""
@@ -203,7 +221,7 @@ def test_an_emitter_among_black_surfaces_has_no_nan_in_its_summary():
             hidden.objects.link(room)
             bpy.context.scene.collection.children.link(hidden)
             bpy.context.view_layer.layer_collection.children["Hidden"].exclude = True
-        for overrides in ({}, {"final_gather": False}):
+        for overrides in ({}, {"final_gather": False, "quality": "DRAFT"}):
             summary = addon.bake(bpy.context.scene, **overrides)
             assert non_finite(summary) == [], non_finite(summary)
             lines = bpy.context.scene.radiosity.last_report + " " + bpy.context.scene.radiosity.last_accuracy
@@ -218,5 +236,6 @@ def test_an_emitter_among_black_surfaces_has_no_nan_in_its_summary():
 write_library()
 harness.run(test_a_linked_room_is_refused_before_any_work_and_named,
             test_a_linked_room_baked_into_a_local_mesh_keeps_its_light_after_reopening,
+            test_one_undo_takes_back_the_bake_and_the_local_mesh,
             test_an_object_only_a_linked_collection_holds_is_refused_even_with_the_option,
             test_an_emitter_among_black_surfaces_has_no_nan_in_its_summary)
