@@ -75,6 +75,14 @@ def overridden_room():
     return room
 
 
+def overridden_mesh_room():
+    """overridden_room with its mesh overridden too: a library override's geometry is not saved either."""
+    room = overridden_room()
+    room.data.override_create(remap_local_usages=True)
+    assert room.data.library is None and room.data.override_library is not None
+    return room
+
+
 def operator_error():
     """The operator's ERROR report (bpy.ops raises it in the background), or None if it finished."""
     try:
@@ -126,7 +134,7 @@ def reopened_light(path):
 
 
 def test_a_linked_room_is_refused_before_any_work_and_named():
-    for make in (linked_room, overridden_room):
+    for make in (linked_room, overridden_room, overridden_mesh_room):
         make()
         message = assert_refused_before_any_work(operator_error)
         assert "room-library.blend" in message, message
@@ -145,7 +153,7 @@ def test_a_linked_room_is_refused_before_any_work_and_named():
 
 
 def test_a_linked_room_baked_into_a_local_mesh_keeps_its_light_after_reopening():
-    for make, how in ((linked_room, "operator"), (overridden_room, "bake()")):
+    for make, how in ((linked_room, "operator"), (overridden_room, "bake()"), (overridden_mesh_room, "bake()")):
         make()
         if how == "operator":
             bpy.context.scene.radiosity.make_linked_local = True
