@@ -43,6 +43,9 @@ def parse(argv):
                         help="corners take the interpolated solution instead of gathering their light")
     parser.add_argument("--separate-linked-duplicates", action="store_true", default=None,
                         help="give objects that share a mesh (Alt+D) a mesh each, so each keeps its own light")
+    parser.add_argument("--make-linked-local", action="store_true", default=None,
+                        help="give objects whose meshes are linked from another file local meshes to hold the light "
+                             "(without it such a bake is refused: linked data is not saved with the file)")
     return parser.parse_args(argv)
 
 

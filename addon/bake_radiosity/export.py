@@ -96,6 +96,7 @@ class _Builder:
             material_names=[m.name if m is not None else None for m in slots],
             matrix_world=matrix,
             unwritable=_unwritable_reason(instance, original, mesh),
+            object_library=original.library.filepath if original.library is not None else "",
         ))
         self.positions.append(world)
         self.counts.append(loop_total)

@@ -7,7 +7,7 @@ import time
 
 import bpy
 
-from . import export, facing, media_export, media_writeback, outliers, world, writeback
+from . import export, facing, linked, media_export, media_writeback, outliers, world, writeback
 from .engine import auto_settings, energy, error_estimate, media_energy, solve
 from .engine import summary as summary_lines
 from .engine.errors import BakeError
@@ -15,7 +15,7 @@ from .engine.errors import BakeError
 SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance",
                  "max_iterations",
                  "memory_budget", "hard_edge_angle", "attribute_name", "target", "separate_linked_duplicates",
-                 "final_gather", "write_light_only",
+                 "final_gather", "write_light_only", "make_linked_local",
                  "zone_size", "media_folder")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
@@ -63,6 +63,11 @@ class BakeJob:
         self.seconds_export = time.perf_counter() - start
         if self.exported.polygon_count == 0:
             raise BakeError("Nothing to bake: no mesh renders in view layer '%s'" % view_layer.name)
+        # Before any work: light written where it is not saved would be lost.
+        self.linked = linked.find(self.exported, self.settings)
+        refusal = linked.refusal(self.linked, self.settings["make_linked_local"])
+        if refusal:
+            raise BakeError(refusal)
         self.far_polygons, far_warnings = outliers.leave_out_far_polygons(self.exported)
         self.warnings = list(self.exported.warnings) + far_warnings
         self.media = media_export.export_media(depsgraph, view_layer, float(self.settings["zone_size"]))
@@ -133,6 +138,9 @@ class BakeJob:
         if self.media.media:  # files first: if one cannot be written, nothing in the scene has changed
             with solve.core_errors_as_bake_errors():
                 media_files = media_writeback.write_files(self.media, self.result, self.settings["media_folder"])
+        made_local = linked.make_local(self.exported, self.linked)
+        if made_local:
+            self.warnings.append(made_local)
         self.warnings += writeback.write(scene, self.exported, self.result, self.settings)
         if self.media.media:
             media_writeback.load(scene, self.media, media_files)
@@ -248,6 +256,9 @@ def bake(scene, **overrides):
     `overrides` take any scene.radiosity setting by name for this bake only, e.g.
     bake(scene, quality="HIGH") or bake(scene, element_size=0.05, method="PROGRESSIVE"); naming
     method, hemicube_resolution, element_size or tolerance without a quality means CUSTOM.
+    make_linked_local=True gives objects whose meshes are linked from another file (or library
+    overrides of such) local meshes to hold their light; without it such a bake raises BakeError
+    naming them before any work, since linked data is not saved with the file.
     """
     view_layer, depsgraph = view_layer_and_depsgraph(scene)
     job = BakeJob(scene, depsgraph, view_layer, overrides)

@@ -128,6 +128,14 @@ class RadiositySettings(bpy.types.PropertyGroup):
                     "with the bake). Off: they light the scene but are not written",
         default=False,
     )
+    make_linked_local: BoolProperty(
+        name="Make Linked Meshes Local",
+        description="Meshes linked from another .blend file (File > Link, or under a library override) are not "
+                    "saved with this file, so light written into them would be lost. On: each baked object showing "
+                    "one gets a local mesh to hold its light, as Object > Relations > Make Local does (Target: "
+                    "Original Meshes; one undo step with the bake). Off: such a bake is refused, naming the objects",
+        default=False,
+    )
     target: EnumProperty(
         name="Target",
         description="Where the baked light is written",

@@ -74,6 +74,7 @@ def draw_panel(layout, context):
     column.prop(settings, "target")
     if settings.target == "ORIGINAL":
         column.prop(settings, "separate_linked_duplicates")
+        column.prop(settings, "make_linked_local")
     column.prop(settings, "attribute_name")
     column.prop(settings, "write_light_only")
     column.separator()

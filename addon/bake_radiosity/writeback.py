@@ -55,14 +55,14 @@ def _write_original(exported, result, outputs, separate_linked_duplicates):
         if part.shares_mesh and not separate_linked_duplicates:
             shared.append(part.object_name)
             continue
-        obj = bpy.data.objects.get(part.object_name)
+        obj = bpy.data.objects.get((part.object_name, part.object_library or None))
         if obj is None or obj.type != "MESH" or part.object_name in written:
             continue
         if part.shares_mesh and obj.data.users > 1:
             obj.data = obj.data.copy()  # materials and attributes come along
             separated.append(part.object_name)
         mesh = obj.data
-        taken = [name for name, _, _ in outputs if _name_taken_by_other_attribute(mesh, name)]
+        taken = [name for name, _, _ in outputs if name_taken_by_other_attribute(mesh, name)]
         if taken:
             refused.setdefault("a non-colour attribute is named '%s'" % taken[0], []).append(part.object_name)
             continue
@@ -90,7 +90,7 @@ def _listed(names):
     return ", ".join(names[:5]) + (", ..." if len(names) > 5 else "")
 
 
-def _name_taken_by_other_attribute(mesh, name):
+def name_taken_by_other_attribute(mesh, name):
     attribute = mesh.attributes.get(name)
     return attribute is not None and mesh.color_attributes.get(name) is None
 

@@ -3,8 +3,10 @@ the core run, the result judged and put in words, on a closed box whose light is
 (the furnace: L = E / (1 - rho) on every inner face; what its walls emit outwards, from their back
 sides, leaves it, and everything they emit inwards is absorbed)."""
 import dataclasses
+import math
 import sys
 import unittest
+import warnings
 
 import numpy as np
 
@@ -30,6 +32,27 @@ def closed_box(rho=0.6, emitted=2.0):
                          emission=np.full((faces, 3), emitted, dtype=np.float32),
                          material=np.zeros(faces, dtype=np.int32), front_only=np.zeros(faces, dtype=np.uint8),
                          lights=[], parts=[])
+
+
+def single_face(reflectance, emission):
+    """One 1 m square, alone."""
+    return ExportedScene(positions=np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float32),
+                         face_offsets=np.array([0, 4], dtype=np.int32), corner_vertices=np.arange(4, dtype=np.int32),
+                         reflectance=np.full((1, 3), reflectance, dtype=np.float32),
+                         emission=np.full((1, 3), emission, dtype=np.float32),
+                         material=np.zeros(1, dtype=np.int32), front_only=np.zeros(1, dtype=np.uint8),
+                         lights=[], parts=[])
+
+
+def non_finite(value, path="summary"):
+    """The paths of every float in `value` (dicts and lists within) that is NaN or infinite."""
+    if isinstance(value, dict):
+        return [p for key, item in value.items() for p in non_finite(item, "%s[%r]" % (path, key))]
+    if isinstance(value, (list, tuple)):
+        return [p for index, item in enumerate(value) for p in non_finite(item, "%s[%d]" % (path, index))]
+    if isinstance(value, (float, np.floating)) and not math.isfinite(value):
+        return [path]
+    return []
 
 
 def bake(scene, **overrides):
@@ -103,6 +126,44 @@ class EngineTest(unittest.TestCase):
                       % (100 * power.created / power.emitted), text)
         error = error_estimate.estimate(raised, power)
         self.assertEqual((error.relation, error.typical), ("at least", power.created / power.emitted))
+
+    def test_an_emitter_among_black_surfaces_has_its_error_in_words_not_nan(self):
+        # Nothing reflects light: the relative error of reflected light is 0 / 0, which the summary
+        # once printed as "Error about nan% per corner". Alone, and inside a black box.
+        panel = single_face(reflectance=0.0, emission=5.0)
+        black_box = closed_box(rho=0.0, emitted=0.0)
+        black_box.emission[1] = 5.0  # the lid emits, the other sides are black
+        for name, scene in (("alone", panel), ("in a black box", black_box)):
+            for overrides in ({}, {"final_gather": False}, {"quality": "CUSTOM", "method": "HIERARCHICAL"}):
+                with self.subTest(name, **overrides):
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("error")  # numpy's 0 / 0 RuntimeWarning fails the test
+                        choice, result = bake(scene, **overrides)
+                        error = dataclasses.asdict(error_estimate.estimate(result))
+                        text = summary.error_text(error)
+                    self.assertEqual((error["relation"], error["undefined"]),
+                                     ("undefined", error_estimate.NO_REFLECTED_LIGHT))
+                    self.assertIsNone(error["typical"])
+                    self.assertEqual(non_finite(error), [])
+                    self.assertIn("no reflected light to estimate from", text)
+                    self.assertNotIn("nan", text.lower())
+                    self.assertNotIn("inf", text.lower())
+
+    def test_a_lit_scene_keeps_a_numeric_estimate(self):
+        # A grey emitting box lights itself: its walls reflect, so the estimate is a number.
+        choice, result = bake(closed_box(rho=0.5, emitted=1.0), quality="DRAFT")
+        error = error_estimate.estimate(result)
+        self.assertEqual(error.undefined, "")
+        self.assertTrue(math.isfinite(error.typical) and error.typical > 0.0)
+
+    def test_no_solve_bound_where_a_surface_reflects_everything(self):
+        # rho_max = 1 makes the bound residual / (1 - rho_max) infinite: no bound, in words.
+        choice, result = bake(closed_box(), quality="DRAFT", final_gather=False)
+        reflecting_all = dict(result, element_reflectance=np.ones_like(result["element_reflectance"]))
+        error = dataclasses.asdict(error_estimate.estimate(reflecting_all))
+        self.assertIsNone(error["solve_bound"])
+        self.assertEqual(non_finite(error), [])
+        self.assertIn("no bound from the solve", summary.error_text(error))
 
     def test_bad_input_is_a_bake_error_naming_the_setting(self):
         scene = closed_box()

@@ -19,8 +19,10 @@ and the solution make the same error (docs/accuracy.md, "The summary after a bak
 estimate against Cycles). Without the gather (the hierarchy, media, the gather turned off) the error
 is the one measured on the Cornell box for about as many elements."""
 
+import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 
@@ -43,54 +45,92 @@ MEASURED = (
 )
 
 
+# What the estimate says, in words, where it has no number (its numbers are None then).
+NO_REFLECTED_LIGHT = "no reflected light to estimate from"
+NOT_FINITE = "the baked light is not finite"
+
+
 @dataclass(frozen=True)
 class ErrorEstimate:
-    typical: float      # relative RMS luminance error per corner to expect (solve bound apart)
-    relation: str       # "about"; "at least" (light created, or fewer elements than measured), "at most"
+    typical: Optional[float]  # relative RMS luminance error per corner to expect (solve bound apart); None: undefined
+    relation: str       # "about"; "at least" (light created, or fewer elements than measured), "at most"; "undefined"
     source: str         # "gather": from this bake's gather; "measured": the Cornell box's table
-    sampling: float       # the gather's sampling: its own rays and the field's noise (0 without the gather)
-    solution_bias: float  # the solution's bias as the gather's indirect light carries it (0 without)
-    field_light: float    # the light the field misses or adds, as the indirect light carries it (0 without)
-    solve_bound: float    # relative to the baked light, at most this from the solve
+    sampling: Optional[float]       # the gather's sampling: its own rays and the field's noise (0 without the gather)
+    solution_bias: Optional[float]  # the solution's bias as the gather's indirect light carries it (0 without)
+    field_light: Optional[float]    # the light the field misses or adds, as the indirect light carries it (0 without)
+    solve_bound: Optional[float]    # relative to the baked light, at most this from the solve; None: no bound
+    undefined: str = ""  # why there is no estimate, in words (NO_REFLECTED_LIGHT, NOT_FINITE); "" when there is
 
 
 def estimate(result, power=None):
     """ErrorEstimate of a `_core.bake` result; `power` (an energy.EnergyBalance, by default
     energy.balance(result)): a bake whose surfaces (and zones) absorbed more than was emitted made
-    that light from nothing, so its error is at least that share."""
+    that light from nothing, so its error is at least that share. A relative error of reflected
+    light is undefined where no corner shows any (only emitters and black surfaces): the estimate
+    says so in `undefined`, its numbers None."""
     gather = result.get("final_gather") or {}
+    power = power if power is not None else energy.balance(result)
+    created = power.created / power.emitted if power.emitted > 0.0 else 0.0
+    bound = solve_bound(result)
+    if not math.isfinite(created):
+        return _undefined(NOT_FINITE, "gather" if "variance" in gather else "measured", bound)
     if "variance" in gather:
-        sampling, bias, field = gather_parts(result, gather)
+        parts = gather_parts(result, gather)
+        if parts is None:
+            return _floored(_undefined(NO_REFLECTED_LIGHT, "gather", bound), created)
+        sampling, bias, field = parts
         typical, relation, source = math.sqrt(sampling ** 2 + bias ** 2 + field ** 2), "about", "gather"
     else:
+        if not reflects_light(result):
+            return _floored(_undefined(NO_REFLECTED_LIGHT, "measured", bound), created)
         elements = int((~result["element_back"]).sum())  # as measured: emitters' back sides are not shown
         typical, relation, source = _interpolate(elements), _relation(elements), "measured"
         sampling = bias = field = 0.0
-    power = power if power is not None else energy.balance(result)
-    created = power.created / power.emitted if power.emitted > 0.0 else 0.0
-    if not math.isfinite(created) or created > typical:
-        typical, relation = created if math.isfinite(created) else math.inf, "at least"
+    if created > typical:
+        typical, relation = created, "at least"
     return ErrorEstimate(typical=typical, relation=relation, source=source, sampling=sampling, solution_bias=bias,
-                         field_light=field, solve_bound=solve_bound(result))
+                         field_light=field, solve_bound=bound)
+
+
+def _undefined(reason, source, bound):
+    return ErrorEstimate(typical=None, relation="undefined", source=source, sampling=None, solution_bias=None,
+                         field_light=None, solve_bound=bound, undefined=reason)
+
+
+def _floored(error, created):
+    """Light created from nothing is an error of at least its share, with or without an estimate."""
+    if created > 0.0:
+        return dataclasses.replace(error, typical=created, relation="at least")
+    return error
+
+
+def reflects_light(result):
+    """Whether some corner shows reflected light: it is lit (corner_light) and not black. Without
+    one (an emitter alone, or among black surfaces) a relative error of reflected light is 0 / 0."""
+    value = _luminance(result["corner_radiance"])
+    light = _luminance(result["corner_light"])
+    shown = (value > 0.0) & (light > 0.0)
+    return bool(np.isfinite(light).all() and shown.any())
 
 
 def gather_parts(result, gather):
     """(sampling, solution's bias, field's light) as relative RMS luminance over the corners of a
     `_core.bake` result and its gather's statistics. Corners that emit (a colour brighter than the
     light arriving: their emission would outweigh the rest in the bias), unless all do, and the
-    darkest are left out."""
+    darkest are left out. None when no corner judged shows reflected light (every one black, or
+    unlit: an emitter alone), where the relative error is 0 / 0."""
     value = _luminance(result["corner_radiance"])
     reflecting = value <= _luminance(result["corner_light"]) * (1.0 + 1e-6)
     if not reflecting.any():
         reflecting = np.ones_like(reflecting)
     judged = reflecting & (value >= DARK_SHARE * value[reflecting].mean()) & (value > 0.0)
-    if not judged.any():
-        return 0.0, 0.0, 0.0
+    light = _luminance(result["corner_light"])[judged]
+    if not judged.any() or not np.sum(light) > 0.0:
+        return None
     v = value[judged]
     own = _luminance(np.sqrt(np.maximum(gather["variance"], 0.0)))[judged]
     field = _luminance(np.sqrt(np.maximum(gather["field_noise"], 0.0)))[judged]
     sampling = math.sqrt(float(np.mean((own ** 2 + field ** 2) / v ** 2)))
-    light = _luminance(result["corner_light"])[judged]
     bias = float(np.sum(_luminance(gather["solution_light"])[judged] - light) / np.sum(light))
     share = math.sqrt(float(np.mean((_luminance(gather["indirect"])[judged] / v) ** 2)))
     shown = ~result["element_back"]  # read flat, not through the field
@@ -118,7 +158,8 @@ def solve_bound(result):
     if leaving == 0.0:
         return 0.0
     rho_max = float(result["element_reflectance"].max())
-    return result["residual"] * emitted / leaving / (1.0 - rho_max)
+    bound = result["residual"] * emitted / leaving / (1.0 - rho_max) if rho_max < 1.0 else math.inf
+    return bound if math.isfinite(bound) else None
 
 
 def _luminance(rgb):

@@ -24,6 +24,7 @@ class Part:
     matrix_world: np.ndarray
     unwritable: str = ""  # why ORIGINAL cannot write its light onto the object's mesh ("" = it can)
     shares_mesh: bool = False  # another baked object shows the same mesh (a linked duplicate, Alt+D)
+    object_library: str = ""  # the library file the object is linked from ("" = this file's own object)
 
 
 @dataclass

@@ -51,13 +51,20 @@ def power_text(power):
 
 
 def error_text(error):
+    """The error estimate in words; where a quantity is undefined (None) the words say why."""
+    solve = ("at most %.2g%% (solve)" % (100 * error["solve_bound"]) if error["solve_bound"] is not None
+             else "no bound from the solve (a surface reflects all light)")
+    if error.get("undefined"):
+        if error["typical"] is not None:  # light created from nothing: at least its share
+            return "Error %s %.1f%% per corner (light created by the bake; otherwise %s) + %s" % (
+                error["relation"], 100 * error["typical"], error["undefined"], solve)
+        return "Error per corner: none estimated, %s + %s" % (error["undefined"], solve)
     if error["source"] == "gather":
         where = "this bake's gather: sampling %.1f%%, solution's bias %.1f%%, field's light %.1f%%" % (
             100 * error["sampling"], 100 * error["solution_bias"], 100 * error["field_light"])
     else:
         where = "element size, measured on the Cornell box against Cycles"
-    return "Error %s %.1f%% per corner (%s) + at most %.2g%% (solve)" % (
-        error["relation"], 100 * error["typical"], where, 100 * error["solve_bound"])
+    return "Error %s %.1f%% per corner (%s) + %s" % (error["relation"], 100 * error["typical"], where, solve)
 
 
 def progress_text(info, tolerance):
