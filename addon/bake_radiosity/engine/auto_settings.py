@@ -112,15 +112,19 @@ class Choice:
     direct_emitter_area: float = 0.0  # emitting elements smaller than this light elements directly
     direct_emitters: int = 0    # how many emitting elements that is
 
-    def stability_keywords(self):
-        """The stability and output settings _core.bake takes for this choice."""
-        keywords = {"max_element_aspect": self.max_element_aspect, "hemicube_rotations": self.hemicube_rotations,
-                    "near_field": self.near_field, "final_gather": self.gather_rays > 0,
-                    "direct_emitter_area": self.direct_emitter_area}
+    def gather_keywords(self):
+        """The final gather's settings _core.bake takes for this choice (any method)."""
+        keywords = {"final_gather": self.gather_rays > 0}
         if self.gather_rays > 0:
-            keywords["gather_rays"] = self.gather_rays
-            keywords["gather_field_rays"] = self.gather_field_rays
-            keywords["gather_shadow_rays"] = self.gather_shadow_rays
+            keywords.update(gather_rays=self.gather_rays, gather_field_rays=self.gather_field_rays,
+                            gather_shadow_rays=self.gather_shadow_rays)
+        return keywords
+
+    def stability_keywords(self):
+        """The stability and output settings _core.bake takes for this choice (uniform methods)."""
+        keywords = {"max_element_aspect": self.max_element_aspect, "hemicube_rotations": self.hemicube_rotations,
+                    "near_field": self.near_field, "direct_emitter_area": self.direct_emitter_area}
+        keywords.update(self.gather_keywords())
         if self.method == "gauss_seidel":
             keywords["over_relaxation"] = AUTOMATIC_OVER_RELAXATION
         return keywords

@@ -42,6 +42,7 @@ def core_settings(choice, settings, lights, world=None, media=()):
         keywords["world"] = world
     if c.method == "hierarchical":
         keywords.update(refine_tolerance=c.refine_tolerance, max_bytes=c.budget_bytes)
+        keywords.update(c.gather_keywords())
     elif media:  # the zonal bake: surfaces and media in one system
         keywords["media"] = list(media)
         if c.method == "gauss_seidel":
