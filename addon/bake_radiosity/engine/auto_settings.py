@@ -73,7 +73,7 @@ class Preset:
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
-                     gathered=Gathered(16, 4.0, near_field=False, rays=3136, field_rays=64, shadow_rays=256)),
+                     gathered=Gathered(16, 4.0, near_field=True, rays=3136, field_rays=64, shadow_rays=256)),
     "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
                    gathered=Gathered(32, 4.0, near_field=True, rays=6400, field_rays=64, shadow_rays=256)),
 }

@@ -16,8 +16,9 @@ core's output/gather_statistics.h), in three parts added as squares:
 The solve's bound (solve_bound) is given apart, and light created from nothing (more absorbed than
 emitted) puts a floor under the estimate. What the bake cannot see is not in it: where the gather
 and the solution make the same error (docs/accuracy.md, "The summary after a bake", measures the
-estimate against Cycles). Without the gather (the hierarchy, media, the gather turned off) the error
-is the one measured on the Cornell box for about as many elements."""
+estimate against Cycles). Without the gather (media, Subdivided Copies, the gather turned off) the
+error is the one measured on the Cornell box for about as many elements, and the summary says that
+this bake's own error is not seen."""
 
 import dataclasses
 import math
@@ -53,7 +54,7 @@ NOT_FINITE = "the baked light is not finite"
 @dataclass(frozen=True)
 class ErrorEstimate:
     typical: Optional[float]  # relative RMS luminance error per corner to expect (solve bound apart); None: undefined
-    relation: str       # "about"; "at least" (light created, or fewer elements than measured), "at most"; "undefined"
+    relation: str       # "about"; "at least" (light created, or fewer elements than measured); "undefined"
     source: str         # "gather": from this bake's gather; "measured": the Cornell box's table
     sampling: Optional[float]       # the gather's sampling: its own rays and the field's noise (0 without the gather)
     solution_bias: Optional[float]  # the solution's bias as the gather's indirect light carries it (0 without)
@@ -167,11 +168,11 @@ def _luminance(rgb):
 
 
 def _relation(elements):
-    # Fewer elements than measured err more than the coarsest measurement, more elements less.
+    # Fewer elements than measured err more than the coarsest measurement. More elements than the
+    # finest need not err less: a scene's own difficulties (lamps beside walls, contacts) are not
+    # in the table, so it stays "about" the finest measurement.
     if elements < MEASURED[0][0]:
         return "at least"
-    if elements > MEASURED[-1][0]:
-        return "at most"
     return "about"
 
 

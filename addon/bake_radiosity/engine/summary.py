@@ -63,7 +63,8 @@ def error_text(error):
         where = "this bake's gather: sampling %.1f%%, solution's bias %.1f%%, field's light %.1f%%" % (
             100 * error["sampling"], 100 * error["solution_bias"], 100 * error["field_light"])
     else:
-        where = "element size, measured on the Cornell box against Cycles"
+        where = ("element size, measured on the Cornell box against Cycles; without the final gather this "
+                 "scene's own error is not seen")
     return "Error %s %.1f%% per corner (%s) + %s" % (error["relation"], 100 * error["typical"], where, solve)
 
 

@@ -2,6 +2,9 @@
 /// @brief Directions towards each corner's first fan triangle's centroid (corner_approach.h).
 #include "output/corner_approach.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 namespace radiosity::detail {
@@ -26,6 +29,11 @@ std::vector<Vec3> corner_approach(const Elements& elements, const int32_t* face_
         }
     }
     return approach;
+}
+
+float bake_offset(const Vec3& corner, float scene_size) {
+    const float floor = std::min(1.0f, scene_size);
+    return 1e-4f * std::max({floor, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
 }
 
 }  // namespace radiosity::detail

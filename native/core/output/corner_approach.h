@@ -18,4 +18,10 @@ namespace radiosity::detail {
 /// holding an input corner, zero for the others.
 std::vector<Vec3> corner_approach(const Elements& elements, const int32_t* face_offsets, std::size_t face_count);
 
+/// How far from its vertex Cycles bakes a corner (bake_offset_towards_center in Cycles' kernel):
+/// 1e-4 of the vertex's largest coordinate, at least 1e-4 (float precision at metre scale). Below
+/// metre scale the floor follows the scene (`scene_size`), so that a scene scaled by 10^-6 bakes as
+/// it does at full size.
+float bake_offset(const Vec3& corner, float scene_size);
+
 }  // namespace radiosity::detail

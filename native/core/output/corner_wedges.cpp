@@ -2,6 +2,7 @@
 /// @brief Tables of the light around the element corners on seams (corner_wedges.h).
 #include "output/corner_wedges.h"
 
+#include "output/corner_approach.h"
 #include "output/corner_blend.h"
 
 #include <glm/geometric.hpp>
@@ -40,7 +41,7 @@ std::pair<double, double> along_edges(bool triangle, int k, double u, double v) 
 
 }  // namespace
 
-Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, double s) {
+Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, double s) const {
     const int count = elements.corner_count(e);
     const Vec3 corner = elements.vertices[std::size_t(elements.corners[e][k])];
     const Vec3 next = elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] - corner;
@@ -49,8 +50,8 @@ Vec3 CornerWedges::point_at(const Elements& elements, std::size_t e, int k, doub
     const Vec3 direction = glm::normalize(float(std::cos(angle)) * next + float(std::sin(angle)) * previous);
     // As far as Cycles bakes a corner from its vertex (corner_approach.h), so that the table holds
     // the light where the rays of a corner beside it land; at most a tenth of the shorter edge.
-    const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
-    const float hair = std::min(1e-4f * largest, 0.1f * std::min(glm::length(next), glm::length(previous)));
+    const float hair =
+        std::min(bake_offset(corner, scene_size_), 0.1f * std::min(glm::length(next), glm::length(previous)));
     return corner + hair * direction;
 }
 

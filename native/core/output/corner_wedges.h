@@ -31,7 +31,7 @@ public:
     /// Tables for the corners of elements at the element vertices marked in `on_seam`, computed
     /// `parallel` over the corners (a runner of (count, body(index)), the gather's parallel_rows).
     template <typename Parallel>
-    CornerWedges(const Elements& elements, const std::vector<uint8_t>& on_seam, const FillTable& fill,
+    CornerWedges(const Elements& elements, const std::vector<uint8_t>& on_seam, float scene_size, const FillTable& fill,
                  const Parallel& parallel);
     CornerWedges() = default;
 
@@ -44,17 +44,18 @@ public:
 
 private:
     /// The point a hair from corner k of element e, at parametric angle s in [0, 1] across its corner.
-    static Vec3 point_at(const Elements& elements, std::size_t e, int k, double s);
+    Vec3 point_at(const Elements& elements, std::size_t e, int k, double s) const;
     void fill_table(const Elements& elements, std::size_t slot, const FillTable& fill);
 
     std::vector<int32_t> table_of_slot_;  ///< slot 4 e + k -> its first value, or -1
     std::vector<Rgb> values_;             ///< kBins values per table, at parametric angles (i + 0.5) / kBins
+    float scene_size_ = 0.0f;
 };
 
 template <typename Parallel>
-CornerWedges::CornerWedges(const Elements& elements, const std::vector<uint8_t>& on_seam, const FillTable& fill,
-                           const Parallel& parallel)
-    : table_of_slot_(4 * elements.size(), -1) {
+CornerWedges::CornerWedges(const Elements& elements, const std::vector<uint8_t>& on_seam, float scene_size,
+                           const FillTable& fill, const Parallel& parallel)
+    : table_of_slot_(4 * elements.size(), -1), scene_size_(scene_size) {
     std::vector<std::size_t> slots;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (elements.is_back(e)) continue;  // not written, so no corner colours to correct

@@ -58,8 +58,8 @@ public:
     Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility,
-             const hr::Visibility* back_sides, float scene_size, const CornerWedges* wedges = nullptr)
+             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, const hr::Visibility* back_sides,
+             float scene_size, const CornerWedges* wedges = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -162,10 +162,8 @@ public:
         const float to_centre = glm::length(towards);
         if (!(to_centre > 0.0f)) return corner;
         if (glm::dot(approach, approach) > 0.0f) {
-            // Where Cycles bakes an input corner (bake_offset_towards_center in Cycles' kernel):
-            // 1e-4 of the vertex's largest coordinate, at least 1e-4, along the approach.
-            const float largest = std::max({1.0f, std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
-            return corner + std::min(to_centre, 1e-4f * largest) * approach;
+            // Where Cycles bakes an input corner, along the approach.
+            return corner + std::min(to_centre, bake_offset(corner, scene_size_)) * approach;
         }
         const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
         return corner + (hair / to_centre) * towards;
@@ -239,7 +237,8 @@ private:
         if (hit.patch < 0 || glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) return hit;
         if (back_sides_ == nullptr || !elements_.has_twin(std::size_t(hit.patch))) return hit;
         const float tolerance = 1e-5f * scene_size_ + 1e-4f * hit.distance;
-        const hr::Visibility::Hit back = back_sides_->first_hit(origin, direction, std::max(0.0f, hit.distance - tolerance));
+        const hr::Visibility::Hit back =
+            back_sides_->first_hit(origin, direction, std::max(0.0f, hit.distance - tolerance));
         return back.patch >= 0 && back.distance <= hit.distance + tolerance ? back : hit;
     }
 
@@ -410,6 +409,86 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         }
 }
 
+/// Elements lit by an emitter nearer to them than half their size (a ceiling beside a panel hung 1
+/// cm under it): that light changes on the scale of the emitter's distance, which the element's
+/// corners do not resolve (the vertex at the panel's edge holds half its back side's light, the
+/// next vertex none, and the line between them is far too bright). Their corners' light is scaled
+/// to the element's solved light, which integrates the emitter over the element (the near field's
+/// exact area factors, near_field.h).
+void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rgb>& emitted,
+                                  const std::vector<Rgb>& radiance, const std::vector<EmitterRun>& runs,
+                                  std::vector<Rgb>& field) {
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        if (elements.is_back(e) || max_channel(emitted[e]) > 0.0) continue;
+        const int count = elements.corner_count(e);
+        const glm::dvec3 centre(elements.centre[e]);
+        double size = 0.0;
+        for (int k = 0; k < count; ++k)
+            size = std::max(size,
+                            glm::length(glm::dvec3(elements.vertices[std::size_t(elements.corners[e][k])]) - centre));
+        const bool near_lit = std::any_of(runs.begin(), runs.end(), [&](const EmitterRun& run) {
+            const double distance = glm::dot(run.normal, centre - run.point);
+            return distance > 0.0 && distance < 0.5 * size && glm::length(centre - run.centre) < run.radius + size;
+        });
+        if (!near_lit) continue;
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0.0;
+            for (int k = 0; k < count; ++k) sum += field[4 * e + std::size_t(k)][c];
+            if (!(sum > 0.0) || !(radiance[e][c] >= 0.0)) continue;
+            const double scale = radiance[e][c] * count / sum;
+            for (int k = 0; k < count; ++k) field[4 * e + std::size_t(k)][c] *= scale;
+        }
+    }
+}
+
+/// Element vertices next to which the light turns with the direction from the vertex
+/// (corner_wedges.h): where an occluder stands on a surface with a corner of its own (some plane's
+/// elements around the place turn through more than half a turn: a floor around a block's foot,
+/// three quarters), and along convex edges (a block's top and upright edges), whose faces hide each
+/// other's surroundings. Along a room's edges and in its corners (concave: a half or a quarter turn)
+/// the surfaces meet in straight lines and the light next to a vertex turns far less.
+std::vector<uint8_t> turning_vertices(const Elements& elements, const std::vector<int32_t>& place, std::size_t places) {
+    struct Plane {
+        Vec3 normal, point;
+        double turn;
+    };
+    std::vector<std::vector<Plane>> planes_at(places);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        if (elements.is_back(e)) continue;
+        const int count = elements.corner_count(e);
+        for (int k = 0; k < count; ++k) {
+            const Vec3 corner = elements.vertices[std::size_t(elements.corners[e][k])];
+            const Vec3 next = elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] - corner;
+            const Vec3 previous = elements.vertices[std::size_t(elements.corners[e][(k + count - 1) % count])] - corner;
+            const float lengths = glm::length(next) * glm::length(previous);
+            if (!(lengths > 0.0f)) continue;
+            const double angle = std::acos(std::clamp(double(glm::dot(next, previous) / lengths), -1.0, 1.0));
+            auto& planes = planes_at[std::size_t(place[std::size_t(elements.corners[e][k])])];
+            auto same = std::find_if(planes.begin(), planes.end(), [&](const Plane& plane) {
+                return glm::dot(plane.normal, elements.normal[e]) > 0.99f;
+            });
+            if (same == planes.end())
+                planes.push_back({elements.normal[e], elements.centre[e], angle});
+            else
+                same->turn += angle;
+        }
+    }
+    auto turning = [](const std::vector<Plane>& planes) {
+        for (const Plane& a : planes) {
+            if (a.turn > M_PI * (1.0 + 1e-3)) return true;  // a foot
+            for (const Plane& b : planes)                   // convex: b's element lies behind a's plane
+                if (&a != &b && glm::dot(a.normal, b.point - a.point) < -1e-3f * glm::length(b.point - a.point))
+                    return true;
+        }
+        return false;
+    };
+    std::vector<uint8_t> at_place(places, 0);
+    for (std::size_t p = 0; p < places; ++p) at_place[p] = planes_at[p].size() > 1 && turning(planes_at[p]);
+    std::vector<uint8_t> turns(elements.vertices.size(), 0);
+    for (std::size_t v = 0; v < turns.size(); ++v) turns[v] = at_place[std::size_t(place[v])];
+    return turns;
+}
+
 /// The light around the element corners on seams (corner_wedges.h), by `gatherer`: at each table
 /// point, how much more light arrives there than at the point the vertex is gathered at. The direct
 /// light's change along the same shadow rays (Gatherer::direct_change), the indirect light's along
@@ -418,7 +497,7 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
 /// linear in between.
 CornerWedges wedge_tables(const Gatherer& gatherer, const Elements& elements, const std::vector<uint8_t>& seam,
                           const std::vector<int32_t>& place, const std::vector<int32_t>& element_at,
-                          const std::vector<Vec3>& approach, const ProgressFn& progress) {
+                          const std::vector<Vec3>& approach, float scene_size, const ProgressFn& progress) {
     constexpr int kEvery = 4, kIndirect = CornerWedges::kBins / kEvery;
     auto fill = [&](std::size_t e, int k, const Vec3* table_points, Rgb* table) {
         const int32_t v = elements.corners[e][k];
@@ -440,7 +519,7 @@ CornerWedges wedge_tables(const Gatherer& gatherer, const Elements& elements, co
                        (1.0 - t) * more[std::size_t(low)] + t * more[std::size_t(low + 1)];
         }
     };
-    return CornerWedges(elements, seam, fill, [&](std::size_t count, const auto& body) {
+    return CornerWedges(elements, seam, scene_size, fill, [&](std::size_t count, const auto& body) {
         parallel_rows("gather wedges", count, 16, 0, progress, [&](std::size_t t) {
             body(t);
             return true;
@@ -548,6 +627,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
                                       field_settings, emitters, runs, visibility, back_sides, scene_size);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
+        keep_near_lit_elements_power(elements, emitted, radiance, runs, field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
         // point (along the same shadow rays as at the vertex, the change has little noise).
         FinalGatherSettings wedge_settings = settings;
@@ -555,7 +635,8 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
                                       emitters, runs, visibility, back_sides, scene_size);
-        wedges = wedge_tables(wedge_gatherer, elements, seam, place, element_at, approach, progress);
+        wedges = wedge_tables(wedge_gatherer, elements, turning_vertices(elements, place, places), place, element_at,
+                              approach, scene_size, progress);
     }
     const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
@@ -579,19 +660,26 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
                 probe[4 * e + k] = Rgb(0.0);  // the gathered value: not the field's noise
             }
     };
+    // Seam vertices that hold no input corner are read by the output's rays only where those land
+    // beside a seam, many of them at once: a field's share of rays each (four times its rays).
+    FinalGatherSettings seam_settings = settings;
+    if (settings.field_rays > 0) seam_settings.rays = std::min(settings.rays, 4 * settings.field_rays);
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
-        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters,
-                                runs, visibility, back_sides, scene_size, &wedges);
+        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
+                                visibility, back_sides, scene_size, &wedges);
+        const Gatherer seam_gatherer(elements, emitted, radiance, field, lights, world_sampler, seam_settings, emitters,
+                                     runs, visibility, back_sides, scene_size, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
             Rgb L, H;
             float share = 0.0f;
-            if (gatherer.radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
-                                     uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
-                                     last ? &reads[i] : nullptr, &point_statistics[i]) &&
+            if ((is_output[points[i]] ? gatherer : seam_gatherer)
+                    .radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
+                                 uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
+                                 last ? &reads[i] : nullptr, &point_statistics[i]) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;

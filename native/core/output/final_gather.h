@@ -1,5 +1,5 @@
 /// @file final_gather.h
-/// @brief The uniform bake's final gather at its output corners (internal; final_gather_settings.h).
+/// @brief The final gather at the output corners of every surface bake (internal; final_gather_settings.h).
 ///
 /// The radiosity solution is kept for the smooth indirect light; what the artist sees at each
 /// output corner is computed at the corner itself (Lischinski, Tampieri & Greenberg 1993's local
@@ -35,25 +35,30 @@
 /// The field the rays read: the solution interpolated to the elements' corners or, with
 /// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at
 /// each vertex, indirect from the solution), so that the solution's error reaches the output only
-/// after one more reflection.
+/// after one more reflection. Elements lit by an emitter nearer to them than half their size (a
+/// ceiling beside a panel hung just under it) keep their solved light instead: that light changes
+/// on the scale of the emitter's distance, which their corners do not resolve.
 ///
 /// Wedges: where an occluder stands on a surface, the light next to the vertex turns with the
-/// direction from it (the occluder's shadow starts there). The element corners on seams keep a
-/// table of the light around them by direction, which the rays landing in their elements read
-/// (corner_wedges.h). On the Cornell box, High: 0.91% -> 0.66% RMS per vertex, the blocks' feet
-/// 2.48% -> 1.47% (lab/final_gather/by_category.py).
+/// direction from it (the occluder's shadow starts there), and so it does along convex edges. The
+/// element corners at such vertices keep a table of the light around them by direction, which the
+/// rays landing in their elements read (corner_wedges.h).
 ///
 /// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
 /// other surface right at the seam, where the interpolated solution is least like the light. So
-/// the vertices on seams are gathered too; the points whose rays met a seam are gathered again
-/// from those values, keeping what those rays read there as weights on the seam vertices' light,
-/// and that light is then solved (each seam point's light is linear in its neighbours'), as if
-/// they were gathered from each other until nothing changed.
+/// the vertices on seams are gathered too (those that hold no input corner with four times the
+/// field's rays: many of them are read at once); the points whose rays met a seam are gathered
+/// again from those values, keeping what those rays read there as weights on the seam vertices'
+/// light, and that light is then solved (each seam point's light is linear in its neighbours'), as
+/// if they were gathered from each other until nothing changed.
 ///
-/// Cost: per output vertex, `rays` rays, and for each emitting element its point factor and at
-/// least one shadow ray: linear in the output corners, but times the emitting elements (a scene
-/// whose emitters are split into thousands of elements pays for each at every corner); per element
-/// corner on a seam, 16 direct light estimates and 5 x 4 `field_rays` rays (the wedges).
+/// Emitters: the emitting elements of one polygon side are one group, whose exact unoccluded light
+/// at a point is one contour integral over its outline (emitter_groups.h); the group's share of the
+/// shadow rays is spread over its elements by area.
+///
+/// Cost: per output vertex, `rays` rays, its share of `shadow_rays` and a contour integral per
+/// emitting polygon side; per seam vertex 4 x `field_rays` rays; per element vertex `field_rays`;
+/// per element corner at a turning vertex, 16 direct light estimates and 4 x 4 `field_rays` rays.
 #pragma once
 
 #include "output/final_gather_settings.h"

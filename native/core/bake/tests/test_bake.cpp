@@ -103,13 +103,14 @@ TEST(Bake, HierarchicalOutputIsGatheredToTheExactDirectLight) {
     // (1 / 2 pi) 2 X / sqrt(1 + X^2) atan(Y / sqrt(1 + X^2)), through the output pass's gather.
     const double rho = 0.5, L_e = 2.0;
     test::SceneArrays s;
-    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(rho));                 // receiver, +z
-    s.add_quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, Rgb(0.0), Rgb(L_e), 1);    // emitter, -z
+    s.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, Rgb(rho));               // receiver, +z
+    s.add_quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, Rgb(0.0), Rgb(L_e), 1);  // emitter, -z
     const double F = 2.0 / std::sqrt(2.0) * std::atan(1.0 / std::sqrt(2.0)) / (2.0 * M_PI);
     const BakeResult r = bake(s.input(), gathered(settings_for(Method::GaussSeidel, 0.2f), true));
     ASSERT_TRUE(r.hierarchy.has_value());
     for (int k = 0; k < 4; ++k) {
-        std::printf("hierarchical receiver corner %d: %.6f, exact %.6f\n", k, r.colors.input_corner[k].g, rho * L_e * F);
+        std::printf("hierarchical receiver corner %d: %.6f, exact %.6f\n", k, r.colors.input_corner[k].g,
+                    rho * L_e * F);
         EXPECT_NEAR(r.colors.input_corner[k].g / (rho * L_e * F), 1.0, 2e-3) << k;
     }
 }
