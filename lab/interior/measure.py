@@ -1,9 +1,9 @@
-"""The interior of lab/interior/level.py (or any scene: --blend, --object) against Cycles, in one run: a deep Cycles truth (many
-seeds, cached in --truth; seeds are added until its own noise is below --truth-noise or --seeds is
-reached), Cycles at a ladder of sample counts and the add-on's presets, each timed (CPU seconds of
-this process: all threads). Error: relative RMS luminance per vertex (corner colours averaged per
-vertex; vertices the truth sees below 1% of the mean left out), as measured and with the truth's
-own noise taken out in quadrature.
+"""The interior of lab/interior/level.py (or any scene: --blend, --object) against Cycles, in one run:
+a deep Cycles truth (many seeds, cached in --truth; seeds are added until its own noise is below
+--truth-noise or --seeds is reached), Cycles at a ladder of sample counts and the add-on's presets,
+each timed (CPU seconds of this process: all threads). Error: relative RMS luminance per vertex
+(corner colours averaged per vertex; vertices the truth sees below 1% of the mean left out), as
+measured and with the truth's own noise taken out in quadrature.
 
     blender -b --factory-startup --python-exit-code 1 --python lab/interior/measure.py -- \\
         --addon-zip build/bake_radiosity.zip --truth /tmp/interior/truth.npz [--truth-samples 1024] \\
@@ -99,8 +99,9 @@ def main():
 
     print("%s: %d faces, %d vertices (%d lit), %d lamps; truth %d seeds x %d samples (%.0f CPU s a seed), "
           "its noise %.2f%%; load %.1f"
-          % (os.path.basename(args.blend or "interior"), len(obj.data.polygons), len(truth), lit.sum(), len(bpy.data.lights), len(runs), args.truth_samples,
-             seconds_per_seed, 100 * truth_noise, os.getloadavg()[0]), flush=True)
+          % (os.path.basename(args.blend or "interior"), len(obj.data.polygons), len(truth), lit.sum(),
+             len(bpy.data.lights), len(runs), args.truth_samples, seconds_per_seed, 100 * truth_noise,
+             os.getloadavg()[0]), flush=True)
     for samples in [int(s) for s in args.ladder.split(",") if s]:
         colors, cpu, wall = timed(lambda: harness.cycles_corner_bake(obj, samples, samples))  # not the truth's seeds
         measured, clean = error(luminance_per_vertex(obj.data, colors))
