@@ -5,7 +5,7 @@ vertex against the cached deep Cycles truth, the truth's noise taken out (lab/tr
 Run inside Blender (command in lab/error_estimate/README.md):
 
     blender -b --factory-startup --python-exit-code 1 --python lab/error_estimate/check.py -- \\
-        --addon-zip build/bake_radiosity.zip --cornell-truth DIR --interior-truth FILE
+        --addon-zip build/bake_radiosity.zip --cornell-truth DIR [--interior-truth FILE]
 """
 
 import argparse
@@ -57,14 +57,16 @@ def main():
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--cornell-truth", help="folder of the Cornell box's cached truth (default: "
                                                 "$BAKE_RADIOSITY_TRUTH or build/truth)")
-    parser.add_argument("--interior-truth", required=True, help="lab/interior/measure.py's truth file")
+    parser.add_argument("--interior-truth", help="lab/interior/measure.py's truth file (none: no interior)")
     parser.add_argument("--quality", default=",".join(QUALITIES))
     args = parser.parse_args(argv)
     addon = harness.install_addon(args.addon_zip)
     print("scene     quality   estimate (sampling, solution's bias, field's light; solve bound)   "
           "measured (truth's noise out)   estimate / measured")
-    for name, load in (("cornell", lambda: cornell(args.cornell_truth)),
-                       ("interior", lambda: interior(args.interior_truth))):
+    scenes = [("cornell", lambda: cornell(args.cornell_truth))]
+    if args.interior_truth:
+        scenes.append(("interior", lambda: interior(args.interior_truth)))
+    for name, load in scenes:
         obj, luminance, truth = load()
         for quality in args.quality.split(","):
             summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality)
