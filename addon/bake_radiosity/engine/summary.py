@@ -18,7 +18,12 @@ def report_line(summary):
     if hierarchy:
         zones = " (%d leaves of %d faces, %d links; %d leaves split for lamp shadows)" % (
             hierarchy["leaves"], hierarchy["patches"], hierarchy["links"], hierarchy["lamp_splits"])
-    gather = ", final gather (%d rays a corner)" % summary["gather_rays"] if summary.get("gather_rays") else ""
+    if summary.get("gather_rays"):
+        gather = ", final gather (%d rays a corner)" % summary["gather_rays"]
+    elif summary.get("zones"):
+        gather = ", no final gather (its rays do not yet pass through fog or smoke: the corners show the solution)"
+    else:
+        gather = ""
     lit = ", lit by %s" % summary["lit_by"] if summary.get("world") else ""
     return "%d elements%s, %s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
         summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, summary["iterations"],
