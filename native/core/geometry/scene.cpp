@@ -263,6 +263,10 @@ private:
     std::map<std::tuple<int, int, int>, std::vector<int32_t>> edges_;
 };
 
+/// Heights below this many times a polygon's largest coordinate are float round-off: two units in
+/// the last place of a float (2^-23 each, relative).
+constexpr double kRoundOffHeight = 2.0 / double(1 << 23);
+
 /// Reads polygon f's corners into p and its unit normal, or returns why it cannot be used.
 std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vector<DVec3>& p, DVec3& normal) {
     const int32_t first = in.face_offsets[f], count = in.face_offsets[f + 1] - first;
@@ -278,10 +282,17 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
     }
     if (!finite) return Defect::NonFinite;
     const DVec3 twice_area = detail::newell(p);
-    double longest = 0.0;
-    for (int32_t k = 0; k < count; ++k) longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
-    // Zero area relative to the polygon's size, at float precision (the input is float).
-    if (!(glm::length(twice_area) > 1e-7 * longest * longest)) return Defect::ZeroArea;
+    double longest = 0.0, farthest = 0.0;
+    for (int32_t k = 0; k < count; ++k) {
+        longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
+        farthest = std::max({farthest, std::abs(p[k].x), std::abs(p[k].y), std::abs(p[k].z)});
+    }
+    // Zero area at float precision (the input is float): relative to the polygon's size, or a height
+    // over its longest edge within round-off of its corners' coordinates (collinear corners rounded
+    // apart; its plane, and so its normal, would be round-off).
+    const double doubled = glm::length(twice_area);
+    if (!(doubled > 1e-7 * longest * longest) || !(doubled > kRoundOffHeight * farthest * longest))
+        return Defect::ZeroArea;
     normal = glm::normalize(twice_area);
     return std::nullopt;
 }
