@@ -39,7 +39,8 @@ class NameFaces(unittest.TestCase):
 
     def test_any_other_face_message_says_how_to_find_the_face(self):
         named = faces.name_faces("polygon 1: reflectance 1.2 outside [0, 1)", two_objects())
-        self.assertEqual(named, "Floor face 1: reflectance 1.2 outside [0, 1) (%s)" % faces.FIND_FACE)
+        self.assertEqual(named, "Floor face 1: reflectance 1.2 outside [0, 1) (%s; %s)"
+                         % (faces.FIND_FACE, faces.CLEAN_UP))
 
     def test_a_message_about_no_face_is_left_alone(self):
         self.assertEqual(faces.name_faces("resolution must be even", two_objects()), "resolution must be even")
@@ -50,7 +51,7 @@ class SkippedFaces(unittest.TestCase):
         skipped = [(1, "zero area")] + [(2, "zero area")] * 5
         warning = faces.skipped_warning(skipped, two_objects())
         self.assertTrue(warning.startswith("6 face(s) skipped: Floor face 1 (zero area), Shelf face 0"), warning)
-        self.assertIn(", ...", warning)
+        self.assertIn("Shelf face 0 (zero area) and 1 more.", warning)
         self.assertIn("Degenerate Dissolve", warning)
         self.assertIsNone(faces.skipped_warning([], two_objects()))
 

@@ -8,8 +8,8 @@ import numpy as np
 POLYGON = re.compile(r"\bpolygon (\d+)\b")
 # The core's instructions in its own terms, as the artist finds them in the panel.
 ADVICE = (("raise element_size", "raise Element Size (Quality: Custom), or split that face"),)
-FIND_FACE = ("find it in Edit Mode by its index (Spreadsheet, Face domain) and fix or delete it; "
-             "Mesh > Clean Up > Degenerate Dissolve removes faces without area")
+FIND_FACE = "find it in Edit Mode by its index (Spreadsheet, Face domain) and fix or delete it"
+CLEAN_UP = "Mesh > Clean Up > Degenerate Dissolve removes faces without area"
 SHOWN = 5
 
 
@@ -21,7 +21,7 @@ def name_faces(message, scene):
     for core_words, artist_words in ADVICE:
         if core_words in named:
             return named.replace(core_words, artist_words)
-    return "%s (%s)" % (named, FIND_FACE)
+    return "%s (%s; %s)" % (named, FIND_FACE, CLEAN_UP)
 
 
 def skipped_warning(skipped, scene):
@@ -32,9 +32,9 @@ def skipped_warning(skipped, scene):
     for polygon, reason in skipped[:SHOWN]:
         where = scene.polygon_name(polygon)
         names.append("%s (%s)" % ("lamp" if where == "a lamp" else where, reason))
-    more = ", ..." if len(skipped) > SHOWN else ""
+    more = " and %d more" % (len(skipped) - SHOWN) if len(skipped) > SHOWN else ""
     return ("%d face(s) skipped: %s%s. They carry no light; their corners show the light of the faces "
-            "around them. To clean the mesh: %s" % (len(skipped), ", ".join(names), more, FIND_FACE))
+            "around them. %s" % (len(skipped), ", ".join(names), more, CLEAN_UP))
 
 
 def fill_skipped_corners(corner_rgb, scene, skipped_polygons):
