@@ -95,17 +95,17 @@ def room_shell():
     x, y, z = ROOM
     cell = 0.25
     pieces = []
-    for origin, u, v in [((0, 0, 0), (0, y, 0), (x, 0, 0)), ((0, 0, z), (x, 0, 0), (0, y, 0)),
-                         ((0, 0, 0), (x, 0, 0), (0, 0, z)), ((0, y, 0), (0, 0, z), (x, 0, 0)),
-                         ((x, 0, 0), (0, y, 0), (0, 0, z))]:
+    for origin, u, v in [((0, 0, 0), (x, 0, 0), (0, y, 0)), ((0, 0, z), (0, y, 0), (x, 0, 0)),
+                         ((0, 0, 0), (0, 0, z), (x, 0, 0)), ((0, y, 0), (x, 0, 0), (0, 0, z)),
+                         ((x, 0, 0), (0, 0, z), (0, y, 0))]:
         cells = [int(round(np.linalg.norm(w) / cell)) for w in (u, v)]
         pieces.append(scenes.grid(origin, u, v, *cells) + (0,))
-    vertices, quads = scenes.grid((0, 0, 0), (0, 0, z), (0, y, 0), int(z / 0.2), int(y / 0.25))
+    vertices, quads = scenes.grid((0, 0, 0), (0, y, 0), (0, 0, z), int(y / 0.25), int(z / 0.2))
     centres = vertices[quads].mean(axis=1)
     window = (np.abs(centres[:, 1] - y / 2) < 0.6) & (np.abs(centres[:, 2] - 1.5) < 0.6)
     pieces.append((vertices, quads[~window], 0))
     scenes.mesh_object("Room", pieces, [scenes.diffuse("Plaster", (0.7, 0.7, 0.7))])
-    scenes.mesh_object("Ceiling light", [scenes.grid((2.0, 1.7, z - 0.05), (1.0, 0, 0), (0, 0.6, 0), 1, 1) + (0,)],
+    scenes.mesh_object("Ceiling light", [scenes.grid((2.0, 1.7, z - 0.05), (0, 0.6, 0), (1.0, 0, 0), 1, 1) + (0,)],
                        [scenes.emission("Light", (1.0, 0.95, 0.9), 20.0)])
 
 
