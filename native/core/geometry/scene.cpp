@@ -264,7 +264,10 @@ private:
 };
 
 /// Heights below this many times a polygon's largest coordinate are float round-off: two units in
-/// the last place of a float (2^-23 each, relative).
+/// the last place of a float (2^-23 each, relative). Whether corners are collinear cannot be decided
+/// below the rounding of their coordinates (the error bound of an orientation test grows with the
+/// coordinates' magnitude: Shewchuk 1997, "Adaptive Precision Floating-Point Arithmetic and Fast
+/// Robust Geometric Predicates", Discrete & Computational Geometry 18).
 constexpr double kRoundOffHeight = 2.0 / double(1 << 23);
 
 /// Reads polygon f's corners into p and its unit normal, or returns why it cannot be used.
