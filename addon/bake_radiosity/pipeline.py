@@ -8,7 +8,7 @@ import time
 import bpy
 
 from . import export, facing, linked, media_export, media_writeback, outliers, world, writeback
-from .engine import auto_settings, energy, error_estimate, media_energy, solve
+from .engine import auto_settings, energy, error_estimate, faces, media_energy, solve
 from .engine import summary as summary_lines
 from .engine.errors import BakeError
 
@@ -90,7 +90,7 @@ class BakeJob:
         try:
             self.choice = auto_settings.choose(self.settings, self.exported, [m.grid for m in self.media.media])
         except ValueError as error:
-            raise BakeError(str(error)) from error
+            raise BakeError(faces.name_faces(str(error), self.exported)) from error
         self.warnings += auto_settings.warnings_for(self.choice)
         if self.world is not None and not self.world_baked():
             if self.lit_by() == "nothing":
@@ -106,6 +106,7 @@ class BakeJob:
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
         self.result = solve.bake(self.exported, self.core_settings(), progress)
+        self._fill_skipped_corners()
         self.warnings += self._skipped_warnings()
         self.warnings += facing.turned_away_warnings(self.exported, self.result["corner_radiance"])
         hierarchy = self.result.get("hierarchy")
@@ -196,16 +197,18 @@ class BakeJob:
             return "the World only"
         return " and ".join(sources) or "nothing"
 
+    def _fill_skipped_corners(self):
+        """Skipped faces carry no light; their corners show that of the faces around them."""
+        skipped = [polygon for polygon, _ in self.result["skipped"]]
+        for key in ("corner_radiance", "corner_light"):
+            if key in self.result:
+                self.result[key] = faces.fill_skipped_corners(self.result[key], self.exported, skipped)
+
     def _skipped_warnings(self):
         skipped = [(polygon, reason) for polygon, reason in self.result["skipped"]
                    if polygon not in self.far_polygons]  # named already, as far away
-        if not skipped:
-            return []
-        names = []
-        for polygon, reason in skipped[:5]:
-            where = self.exported.polygon_name(polygon)
-            names.append("%s (%s)" % ("lamp" if where == "a lamp" else where, reason))
-        return ["%d face(s) skipped: %s%s" % (len(skipped), ", ".join(names), ", ..." if len(skipped) > 5 else "")]
+        warning = faces.skipped_warning(skipped, self.exported)
+        return [warning] if warning else []
 
 
 def view_layer_and_depsgraph(scene):

@@ -197,6 +197,7 @@ BakeSettings bake_settings(const py::kwargs& given) {
     keywords.read("matrix_budget_bytes", settings.matrix_budget_bytes);
     keywords.read("near_field", settings.near_field.enabled);
     keywords.read("max_element_aspect", settings.limits.max_aspect);
+    settings.limits.element_size = settings.element_size;  // the hierarchy's patches bound slivers by it too
     keywords.read("max_elements", settings.limits.max_elements);
     keywords.read("hemicube_rotations", settings.hemicube_rotations);
     keywords.read("direct_emitter_area", settings.direct_emitter_area);

@@ -3,17 +3,18 @@ the two calls, with the core's errors as BakeError."""
 
 import contextlib
 
-from . import auto_settings, native
+from . import auto_settings, faces, native
 from .errors import BakeError
 
 
 @contextlib.contextmanager
-def core_errors_as_bake_errors():
-    """The core's errors (bad input, budget, divergence, files: `_core.Error`) as BakeError."""
+def core_errors_as_bake_errors(scene=None):
+    """The core's errors (bad input, budget, divergence, files: `_core.Error`) as BakeError; with
+    `scene` (scene.ExportedScene), the faces they name by index named by object."""
     try:
         yield
     except native.core().Error as error:
-        raise BakeError(str(error)) from error
+        raise BakeError(faces.name_faces(str(error), scene) if scene else str(error)) from error
 
 
 @contextlib.contextmanager
@@ -54,13 +55,13 @@ def core_settings(choice, settings, lights, world=None, media=()):
 
 def plan(scene, keywords):
     """What `_core.bake` will solve for `scene` (scene.ExportedScene) with `keywords`: its elements."""
-    with core_errors_as_bake_errors():
+    with core_errors_as_bake_errors(scene):
         return native.core().plan(*scene.scene_arrays(), front_only=scene.front_only,
                                   textures=scene.textures, **keywords)
 
 
 def bake(scene, keywords, progress=None):
     """`_core.bake` of `scene` with `keywords`; `progress`: a callback or a `_core.ProgressMonitor`."""
-    with core_errors_as_bake_errors(), numerical_errors_named(scene):
+    with core_errors_as_bake_errors(scene), numerical_errors_named(scene):
         return native.core().bake(*scene.scene_arrays(), front_only=scene.front_only,
                                   textures=scene.textures, progress=progress, **keywords)

@@ -62,13 +62,49 @@ double segments(double length, float max_edge) {
     return std::max(1.0, std::ceil(length / max_edge * (1.0 - 1e-6)));
 }
 
-/// Counts (long, short) of a quad's two directions after the aspect split: the long direction is
-/// cut until its elements are at most max_aspect times as long as the short direction's.
-void limit_aspect(double length_u, double length_v, float max_aspect, double& nu, double& nv) {
-    if (!(max_aspect >= 1.0f) || !(length_u > 0.0) || !(length_v > 0.0)) return;
+/// A face's light is its area times its radiance: a face of negligible area carries negligible light,
+/// so the aspect cut makes no piece shorter than 1/kSliverDivisions of the element size, nor of less
+/// area than the square of that. The elements from any face are then bounded by its size and area,
+/// never by its aspect.
+constexpr double kSliverDivisions = 32.0;
+
+/// The aspect cut of one polygon (ElementLimits::max_aspect).
+struct AspectCut {
+    double max_aspect = 0.0;  ///< 0: off
+    double size = 0.0;        ///< the element size the floors are fractions of
+    bool area_floor = false;  ///< size is the bake's element size (not the polygon's own length)
+
+    /// The shortest piece the cut makes along a strip `width` wide.
+    double shortest(double width) const {
+        const double floor = size / kSliverDivisions;
+        double length = std::max(max_aspect * width, floor);
+        if (area_floor) length = std::max(length, std::min(size, floor * floor / width));
+        return length;
+    }
+};
+
+/// The aspect cut for polygon p: its floors are fractions of max_edge, else of
+/// ElementLimits::element_size, else (one element per polygon, no size given) of p's longest edge.
+AspectCut aspect_cut(const ElementLimits& limits, float max_edge, const std::vector<DVec3>& p) {
+    AspectCut cut;
+    if (!(limits.max_aspect >= 1.0f)) return cut;
+    cut.max_aspect = limits.max_aspect;
+    cut.size = max_edge > 0.0f ? max_edge : limits.element_size;
+    cut.area_floor = cut.size > 0.0;
+    if (!cut.area_floor)
+        for (std::size_t k = 0; k < p.size(); ++k)
+            cut.size = std::max(cut.size, glm::length(p[(k + 1) % p.size()] - p[k]));
+    return cut;
+}
+
+/// Counts (long, short) of a quad's two directions after the aspect cut: the long direction is
+/// cut until its elements are at most max_aspect times as long as the short direction's, within
+/// the cut's floors.
+void limit_aspect(double length_u, double length_v, const AspectCut& cut, double& nu, double& nv) {
+    if (!(cut.max_aspect >= 1.0) || !(length_u > 0.0) || !(length_v > 0.0)) return;
     const double du = length_u / nu, dv = length_v / nv;
-    if (du > max_aspect * dv) nu = std::ceil(length_u / (max_aspect * dv) * (1.0 - 1e-6));
-    if (dv > max_aspect * du) nv = std::ceil(length_v / (max_aspect * du) * (1.0 - 1e-6));
+    if (du > cut.max_aspect * dv) nu = std::max(nu, std::ceil(length_u / cut.shortest(dv) * (1.0 - 1e-6)));
+    if (dv > cut.max_aspect * du) nv = std::max(nv, std::ceil(length_v / cut.shortest(du) * (1.0 - 1e-6)));
 }
 
 /// Builds the elements of one polygon. Vertices on a polygon edge or diagonal are shared by
@@ -227,6 +263,13 @@ private:
     std::map<std::tuple<int, int, int>, std::vector<int32_t>> edges_;
 };
 
+/// Heights below this many times a polygon's largest coordinate are float round-off: two units in
+/// the last place of a float (2^-23 each, relative). Whether corners are collinear cannot be decided
+/// below the rounding of their coordinates (the error bound of an orientation test grows with the
+/// coordinates' magnitude: Shewchuk 1997, "Adaptive Precision Floating-Point Arithmetic and Fast
+/// Robust Geometric Predicates", Discrete & Computational Geometry 18).
+constexpr double kRoundOffHeight = 2.0 / double(1 << 23);
+
 /// Reads polygon f's corners into p and its unit normal, or returns why it cannot be used.
 std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vector<DVec3>& p, DVec3& normal) {
     const int32_t first = in.face_offsets[f], count = in.face_offsets[f + 1] - first;
@@ -242,10 +285,17 @@ std::optional<Defect> read_polygon(const SceneInput& in, std::size_t f, std::vec
     }
     if (!finite) return Defect::NonFinite;
     const DVec3 twice_area = detail::newell(p);
-    double longest = 0.0;
-    for (int32_t k = 0; k < count; ++k) longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
-    // Zero area relative to the polygon's size, at float precision (the input is float).
-    if (!(glm::length(twice_area) > 1e-7 * longest * longest)) return Defect::ZeroArea;
+    double longest = 0.0, farthest = 0.0;
+    for (int32_t k = 0; k < count; ++k) {
+        longest = std::max(longest, glm::length(p[(k + 1) % count] - p[k]));
+        farthest = std::max({farthest, std::abs(p[k].x), std::abs(p[k].y), std::abs(p[k].z)});
+    }
+    // Zero area at float precision (the input is float): relative to the polygon's size, or a height
+    // over its longest edge within round-off of its corners' coordinates (collinear corners rounded
+    // apart; its plane, and so its normal, would be round-off).
+    const double doubled = glm::length(twice_area);
+    if (!(doubled > 1e-7 * longest * longest) || !(doubled > kRoundOffHeight * farthest * longest))
+        return Defect::ZeroArea;
     normal = glm::normalize(twice_area);
     return std::nullopt;
 }
@@ -283,13 +333,15 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
     };
+    const AspectCut aspect = aspect_cut(limits, max_edge, p);
     const std::size_t first_element = out.size();
     PolygonBuilder build(out, points, static_cast<int32_t>(f), rho, emitted);
     // A strip from `apex` to the edge (b, c): cut along until no row is longer than max_aspect
-    // times the far edge's pieces (as limit_aspect cuts quads); nv across, as that edge asks.
+    // times the far edge's pieces, within the cut's floors (as limit_aspect cuts quads); nv across,
+    // as that edge asks.
     auto strip_rows = [&](int apex, int b, int c, double nv) {
         double nu = std::max(segments(length(apex, b), max_edge), segments(length(apex, c), max_edge));
-        limit_aspect(std::max(length(apex, b), length(apex, c)), length(b, c), limits.max_aspect, nu, nv);
+        limit_aspect(std::max(length(apex, b), length(apex, c)), length(b, c), aspect, nu, nv);
         return nu;
     };
     if (sliver.at_foot) {
@@ -316,8 +368,7 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
         // Opposite edges share a count; they agree with their neighbours when they are equally long.
         double nu = std::max(segments(length(0, 1), max_edge), segments(length(3, 2), max_edge));
         double nv = std::max(segments(length(0, 3), max_edge), segments(length(1, 2), max_edge));
-        limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), limits.max_aspect, nu,
-                     nv);
+        limit_aspect(std::max(length(0, 1), length(3, 2)), std::max(length(0, 3), length(1, 2)), aspect, nu, nv);
         check_cap(nu * nv);
         build.quad(0, 1, 2, 3, static_cast<int>(nu), static_cast<int>(nv));
     } else {
@@ -334,7 +385,7 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
                 piece.nu = std::max(segments(edge_length(0, 1), max_edge), segments(edge_length(3, 2), max_edge));
                 piece.nv = std::max(segments(edge_length(0, 3), max_edge), segments(edge_length(1, 2), max_edge));
                 limit_aspect(std::max(edge_length(0, 1), edge_length(3, 2)),
-                             std::max(edge_length(0, 3), edge_length(1, 2)), limits.max_aspect, piece.nu, piece.nv);
+                             std::max(edge_length(0, 3), edge_length(1, 2)), aspect, piece.nu, piece.nv);
                 total += piece.nu * piece.nv;
             } else {
                 if (m == 3) {

@@ -106,7 +106,13 @@ struct ElementLimits {
     /// until no element is longer than `max_aspect` times its width. Triangles longer than
     /// `max_aspect` times their height: cut into strips across their length, from the corner
     /// opposite a short edge, or from both ends of the longest edge to the altitude's foot.
+    /// Bounded by size, not aspect: no piece is cut shorter than 1/32 of the element size, nor
+    /// to less area than (element size / 32)^2 (a face of negligible area carries negligible light).
     float max_aspect = 0.0f;
+    /// The element size those bounds take where build_elements' max_edge is 0 (the hierarchy's
+    /// patches, which it refines down to its own element size). 0: each polygon's longest edge,
+    /// and no area bound.
+    float element_size = 0.0f;
     /// Cut polygons along the lines where other polygons pass through them, before subdividing, so
     /// that no element straddles an intersection and leaks light across it (docs/stability.md).
     bool cut_intersections = true;
