@@ -39,6 +39,39 @@ Rgb colour_entry(const py::dict& lamp, const char* key, std::size_t index) {
     return c;
 }
 
+/// A non-negative finite number entry, `fallback` when absent.
+double size_entry(const py::dict& lamp, const char* key, std::size_t index, double fallback) {
+    const double value = lamp.contains(key) ? lamp[key].cast<double>() : fallback;
+    if (!(value >= 0.0) || !std::isfinite(value))
+        throw InputError("light " + std::to_string(index) + ": '" + key + "' must be a finite number, 0 or more");
+    return value;
+}
+
+SunLight parse_sun(const py::dict& lamp, std::size_t index) {
+    SunLight sun{unit_entry(lamp, "direction", index), colour_entry(lamp, "irradiance", index)};
+    sun.half_angle = static_cast<float>(size_entry(lamp, "half_angle", index, 0.0));
+    if (!(sun.half_angle < M_PI / 2))
+        throw InputError("light " + std::to_string(index) + ": a sun's 'half_angle' must be below pi/2");
+    if (lamp.contains("disk_directions")) sun.disk_directions = lamp["disk_directions"].cast<bool>();
+    return sun;
+}
+
+/// A point or spot lamp's radius and what it is to Cycles: 'shape' SPHERE, DISK (default) or
+/// DISK_3X, and for DISK_3X 'pick_pdf', Cycles' probability of picking the lamp, in (0, 1].
+void parse_size(const py::dict& lamp, std::size_t index, PointLight& light) {
+    light.radius = static_cast<float>(size_entry(lamp, "radius", index, 0.0));
+    const std::string shape = lamp.contains("shape") ? lamp["shape"].cast<std::string>() : "DISK";
+    if (shape == "SPHERE")
+        light.shape = LampShape::Sphere;
+    else if (shape == "DISK_3X")
+        light.shape = LampShape::Disk3x;
+    else if (shape != "DISK")
+        throw InputError("light " + std::to_string(index) + ": shape must be 'SPHERE', 'DISK' or 'DISK_3X'");
+    light.pick_pdf = static_cast<float>(size_entry(lamp, "pick_pdf", index, 1.0));
+    if (!(light.pick_pdf > 0.0f && light.pick_pdf <= 1.0f))
+        throw InputError("light " + std::to_string(index) + ": 'pick_pdf' must be in (0, 1]");
+}
+
 }  // namespace
 
 Lights parse_lights(const py::list& lamps) {
@@ -47,7 +80,7 @@ Lights parse_lights(const py::list& lamps) {
         const py::dict lamp = lamps[i].cast<py::dict>();
         const std::string type = lamp.contains("type") ? lamp["type"].cast<std::string>() : "";
         if (type == "SUN") {
-            lights.suns.push_back({unit_entry(lamp, "direction", i), colour_entry(lamp, "irradiance", i)});
+            lights.suns.push_back(parse_sun(lamp, i));
             continue;
         }
         if (type != "POINT" && type != "SPOT")
@@ -55,6 +88,7 @@ Lights parse_lights(const py::list& lamps) {
         PointLight light;
         light.position = Vec3(vector_entry(lamp, "position", i));
         light.intensity = colour_entry(lamp, "intensity", i);
+        parse_size(lamp, i, light);
         if (type == "SPOT") {
             light.direction = unit_entry(lamp, "direction", i);
             const double half_angle = lamp.contains("half_angle") ? lamp["half_angle"].cast<double>() : NAN;
