@@ -56,20 +56,14 @@ SunLight parse_sun(const py::dict& lamp, std::size_t index) {
     return sun;
 }
 
-/// A point or spot lamp's radius and what it is to Cycles: 'shape' SPHERE, DISK (default) or
-/// DISK_3X, and for DISK_3X 'pick_pdf', Cycles' probability of picking the lamp, in (0, 1].
+/// A point or spot lamp's radius and what it is to Cycles: 'shape' SPHERE or DISK (default).
 void parse_size(const py::dict& lamp, std::size_t index, PointLight& light) {
     light.radius = static_cast<float>(size_entry(lamp, "radius", index, 0.0));
     const std::string shape = lamp.contains("shape") ? lamp["shape"].cast<std::string>() : "DISK";
     if (shape == "SPHERE")
         light.shape = LampShape::Sphere;
-    else if (shape == "DISK_3X")
-        light.shape = LampShape::Disk3x;
     else if (shape != "DISK")
-        throw InputError("light " + std::to_string(index) + ": shape must be 'SPHERE', 'DISK' or 'DISK_3X'");
-    light.pick_pdf = static_cast<float>(size_entry(lamp, "pick_pdf", index, 1.0));
-    if (!(light.pick_pdf > 0.0f && light.pick_pdf <= 1.0f))
-        throw InputError("light " + std::to_string(index) + ": 'pick_pdf' must be in (0, 1]");
+        throw InputError("light " + std::to_string(index) + ": shape must be 'SPHERE' or 'DISK'");
 }
 
 }  // namespace

@@ -45,18 +45,6 @@ View view_of(const PointLight& light, const Vec3& x) {
 
 double radiance_scale(const PointLight& light) { return 1.0 / (M_PI * double(light.radius) * light.radius); }
 
-/// Cycles 3.x's factor along a direction of cosine `cos_light` to the disk's axis and `cos_surface`
-/// to the surface: w_L / cos_light + w_B, the power heuristic's weights of its light sample (solid
-/// angle pdf taken as pick_pdf t^2 / (pi r^2), t the distance to the disk) and of the diffuse
-/// bounce (cos_surface / pi).
-double disk3x_factor(const PointLight& light, const View& v, double cos_light, double cos_surface) {
-    const double t = v.distance / cos_light;
-    const double p_light = light.pick_pdf * t * t * radiance_scale(light);
-    const double p_bounce = cos_surface / M_PI;
-    const double w_light = p_light * p_light / (p_light * p_light + p_bounce * p_bounce);
-    return w_light / cos_light + (1.0 - w_light);
-}
-
 /// Distance along unit `u` from the shading point to the lamp's surface.
 double distance_to_lamp(const PointLight& light, const View& v, const glm::dvec3& u) {
     const double along = glm::dot(u, v.axis);
@@ -102,8 +90,7 @@ Rgb point_irradiance(const PointLight& light, const hr::Visibility& visibility, 
         const glm::dvec3 u = cone.direction(su, sv);
         const double c = glm::dot(n, u);
         if (!(c > 0.0)) continue;
-        double weight = c * spot_profile(light, Vec3(-u));
-        if (light.shape == LampShape::Disk3x) weight *= disk3x_factor(light, v, glm::dot(u, v.axis), c);
+        const double weight = c * spot_profile(light, Vec3(-u));
         cosines += c;
         const Vec3 to = x + Vec3(u * distance_to_lamp(light, v, u));
         if (weight > 0.0 && visibility.clear(x, to)) lit += weight;

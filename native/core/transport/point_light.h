@@ -13,16 +13,12 @@
 namespace radiosity {
 
 /// What a point or spot lamp of radius r > 0 is to the shading point, per Cycles version
-/// (intern/cycles/kernel/light/point.h and, for 3.x, kernel/light/light.h). Each has uniform
-/// radiance intensity / (pi r^2), so that far from it the irradiance is intensity cos / d^2.
+/// (intern/cycles/kernel/light/point.h). Each has uniform radiance intensity / (pi r^2), so that
+/// far from it the irradiance is intensity cos / d^2.
 enum class LampShape : uint8_t {
     Sphere,  ///< Cycles 4.0 and later with Soft Falloff off: a sphere of radius r.
-    Disk,    ///< Cycles 4.0 and later with Soft Falloff on (Blender's default): a disk of radius r
-             ///< centred on the lamp, facing the shading point.
-    Disk3x,  ///< Cycles 3.x: that disk, but its light samples leave out the disk's own cosine
-             ///< (lamp_light_pdf of ls->Ng = -ls->D), and the surface's bounce rays that hit it count
-             ///< through multiple importance sampling (power heuristic): near the lamp a point
-             ///< gets up to 2 / (1 + cos sigma) times the disk's irradiance.
+    Disk,    ///< Cycles 3.x, and 4.0 and later with Soft Falloff on (Blender's default): a disk of
+             ///< radius r centred on the lamp, facing the shading point.
 };
 
 /// A point lamp, or a spot when `cos_half_angle` > -1.
@@ -37,8 +33,6 @@ struct PointLight {
                                         ///< Cycles 3.x; Cycles 4.0 and later leave the cosine out
     float radius = 0.0f;                ///< Blender's Radius (shadow_soft_size), metres; 0 = a point
     LampShape shape = LampShape::Disk;
-    float pick_pdf = 1.0f;  ///< Disk3x: the probability that Cycles picks this lamp
-                            ///< (kintegrator->pdf_lights), a factor of its MIS weights
 };
 
 /// Cycles' spot profile: cos(angle to the axis), faded in by a smoothstep over `smooth`,
@@ -46,8 +40,8 @@ struct PointLight {
 float spot_profile(const PointLight& light, const Vec3& direction_from_light);
 
 /// The lamp's irradiance at `x` on a surface facing unit `normal` with nothing in between: the
-/// clipped cone of the sphere or disk (cone.h), exact for point lamps of shape Sphere and Disk;
-/// spots and Disk3x take their factor along the cone's axis. Cheap: what lamps are chosen by.
+/// clipped cone of the sphere or disk (cone.h), exact for point lamps; spots take their profile
+/// along the cone's axis. Cheap: what lamps are chosen by.
 Rgb point_unshadowed(const PointLight& light, const Vec3& x, const Vec3& normal);
 
 /// How many shadow rays `x` needs for the lamp's soft shadow: 1 where it looks like a point, up
@@ -56,7 +50,7 @@ int point_rays(const PointLight& light, const Vec3& x);
 
 /// The lamp's irradiance at `x` facing `normal`, shadows included: about `rays` directions
 /// stratified over the lamp's cone (uniform in solid angle, jittered from `seed`), each weighted
-/// by the lamp's light along it (cosine, spot profile, Disk3x's factor); the exact clipped cone
+/// by the lamp's light along it (cosine, spot profile); the exact clipped cone
 /// times the weighted share of them that nothing hides. Exact where nothing hides the lamp.
 Rgb point_irradiance(const PointLight& light, const hr::Visibility& visibility, const Vec3& x, const Vec3& normal,
                      int rays, uint32_t seed);

@@ -1,6 +1,6 @@
 /// @file test_point_light.cpp
 /// @brief Point lamps with a radius against integrals over their sphere or disk: the near field,
-/// the horizon, Cycles 3.x's estimator and a half-hidden lamp.
+/// the horizon and a half-hidden lamp.
 #include "transport/cone.h"
 #include "transport/point_light.h"
 
@@ -53,8 +53,7 @@ double sphere_by_surface(const PointLight& l, const glm::dvec3& x) {
 }
 
 /// The irradiance at `x` (normal +z) from the lamp's disk facing x, by the midpoint rule over the
-/// disk: sum of L cos_x g / t^2 dA, g = cos_y for a true disk, w_L + w_B cos_y for Cycles 3.x
-/// (its light samples without cos_y, its bounces hitting the disk with it, power heuristic).
+/// disk: sum of L cos_x cos_y / t^2 dA.
 double disk_by_area(const PointLight& l, const glm::dvec3& x) {
     constexpr int kRadial = 1500, kAzimuth = 3000;
     const double r = l.radius, L = kIntensity / (M_PI * r * r);
@@ -70,13 +69,7 @@ double disk_by_area(const PointLight& l, const glm::dvec3& x) {
             const glm::dvec3 d = c + rho * (std::cos(phi) * t + std::sin(phi) * b) - x;
             const double dist = glm::length(d), cos_x = d.z / dist, cos_y = -glm::dot(axis, d) / dist;
             if (!(cos_x > 0.0)) continue;
-            double g = cos_y;
-            if (l.shape == LampShape::Disk3x) {
-                const double p_light = l.pick_pdf * dist * dist / (M_PI * r * r), p_bounce = cos_x / M_PI;
-                const double w = p_light * p_light / (p_light * p_light + p_bounce * p_bounce);
-                g = w + (1.0 - w) * cos_y;
-            }
-            sum += L * cos_x * g / (dist * dist) * rho;
+            sum += L * cos_x * cos_y / (dist * dist) * rho;
         }
     }
     return sum * (r / kRadial) * (2.0 * M_PI / kAzimuth);
@@ -131,29 +124,10 @@ TEST(PointLight, DiskFacingThePointMatchesTheIntegralOverIt) {
     }
 }
 
-TEST(PointLight, Cycles3DiskMatchesItsEstimatorNearAWall) {
-    const auto nothing = scene_of();
-    for (float pick_pdf : {1.0f, 0.002f}) {
-        for (float height : {0.03f, 0.1f, 0.5f}) {
-            PointLight l = lamp(LampShape::Disk3x, Vec3(0, 0, height), 0.05f);
-            l.pick_pdf = pick_pdf;
-            for (float offset : {0.0f, 0.04f, 0.1f, 0.3f}) {
-                const Vec3 x(offset, 0, 0);
-                const double truth = disk_by_area(l, glm::dvec3(x));
-                EXPECT_NEAR(traced(l, x, *nothing), truth, 5e-3 * truth) << pick_pdf << " " << height << " " << offset;
-            }
-        }
-    }
-    // Beside the disk's own irradiance, up to 2 / (1 + cos sigma) where the light samples dominate.
-    PointLight near = lamp(LampShape::Disk3x, Vec3(0, 0, 0.03f), 0.05f);
-    const PointLight disk = lamp(LampShape::Disk, Vec3(0, 0, 0.03f), 0.05f);
-    EXPECT_GT(traced(near, Vec3(0), *nothing), 1.1 * unshadowed(disk, Vec3(0)));
-}
-
 TEST(PointLight, AHalfHiddenLampGivesHalfItsLight) {
     // A shelf at z = 0.05 over x > 0 hides the half of the lamp's cone with x > 0 from the origin.
     const auto shelf = scene_of({{0, -1, 0.05f}, {1, -1, 0.05f}, {1, 1, 0.05f}, {0, 1, 0.05f}});
-    for (LampShape shape : {LampShape::Sphere, LampShape::Disk, LampShape::Disk3x}) {
+    for (LampShape shape : {LampShape::Sphere, LampShape::Disk}) {
         const PointLight l = lamp(shape, Vec3(0, 0, 0.1f), 0.05f);
         const double whole = traced(l, Vec3(0), *scene_of());
         EXPECT_NEAR(traced(l, Vec3(0), *shelf), whole / 2, 0.02 * whole / 2) << int(shape);
