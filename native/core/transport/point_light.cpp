@@ -2,7 +2,6 @@
 /// @brief Point and spot lamps as spheres or disks (point_light.h).
 #include "transport/point_light.h"
 
-#include "common/stratified.h"
 #include "transport/cone.h"
 
 #include <glm/geometric.hpp>
@@ -83,21 +82,12 @@ Rgb point_irradiance(const PointLight& light, const hr::Visibility& visibility, 
     const detail::Cone cone(v.axis, v.sin2 < 1.0 ? std::sqrt(1.0 - v.sin2) : -1.0);
     const glm::dvec3 n(normal);
     const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
-    double cosines = 0.0, lit = 0.0;
-    for (int i = 0; i < grid * grid; ++i) {
-        const double su = (i % grid + detail::next_jitter(seed)) / grid;
-        const double sv = (i / grid + detail::next_jitter(seed)) / grid;
-        const glm::dvec3 u = cone.direction(su, sv);
-        const double c = glm::dot(n, u);
-        if (!(c > 0.0)) continue;
-        const double weight = c * spot_profile(light, Vec3(-u));
-        cosines += c;
-        const Vec3 to = x + Vec3(u * distance_to_lamp(light, v, u));
-        if (weight > 0.0 && visibility.clear(x, to)) lit += weight;
-    }
-    if (cosines > 0.0)
+    const double share = detail::lit_share(
+        cone, n, grid, seed, [&](const glm::dvec3& u) { return double(spot_profile(light, Vec3(-u))); },
+        [&](const glm::dvec3& u) { return visibility.clear(x, x + Vec3(u * distance_to_lamp(light, v, u))); });
+    if (share >= 0.0)
         return light.intensity *
-               (radiance_scale(light) * detail::clipped_cone_cosine(glm::dot(n, v.axis), v.sin2) * lit / cosines);
+               (radiance_scale(light) * detail::clipped_cone_cosine(glm::dot(n, v.axis), v.sin2) * share);
     return visibility.clear(x, light.position) ? unshadowed : Rgb(0.0);  // the rays missed a sliver of cone
 }
 

@@ -3,7 +3,6 @@
 /// clipped cone times the cosine-weighted share of them that nothing hides (as point_light.cpp).
 #include "transport/sun_light.h"
 
-#include "common/stratified.h"
 #include "transport/cone.h"
 
 #include <glm/geometric.hpp>
@@ -46,17 +45,10 @@ Rgb sun_irradiance(const SunLight& sun, const hr::Visibility& visibility, const 
     if (!(clipped > 0.0)) return Rgb(0.0);
     const detail::Cone cone(towards, cos_max);
     const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
-    double cosines = 0.0, lit = 0.0;
-    for (int i = 0; i < grid * grid; ++i) {
-        const double su = (i % grid + detail::next_jitter(seed)) / grid;
-        const double sv = (i / grid + detail::next_jitter(seed)) / grid;
-        const glm::dvec3 u = cone.direction(su, sv);
-        const double c = glm::dot(n, u);
-        if (!(c > 0.0)) continue;
-        cosines += c;
-        if (visibility.clear_towards(x, Vec3(u))) lit += c;
-    }
-    return cosines > 0.0 ? sun.irradiance * (clipped * spread_factor(sun, cos_max) * lit / cosines) : Rgb(0.0);
+    const double share = detail::lit_share(
+        cone, n, grid, seed, [](const glm::dvec3&) { return 1.0; },
+        [&](const glm::dvec3& u) { return visibility.clear_towards(x, Vec3(u)); });
+    return share > 0.0 ? sun.irradiance * (clipped * spread_factor(sun, cos_max) * share) : Rgb(0.0);
 }
 
 }  // namespace radiosity
