@@ -383,3 +383,51 @@ def cluttered_room(blocks, size=0.02, cells=1):
         pieces += [grid(corner + size * np.array(o), size * np.array(u), size * np.array(v), 1, 1) + (0,)
                    for o, u, v in cube]
     mesh_object("Blocks", pieces, [white])
+
+
+LAMP_ROOM_SIZE, LAMP_ROOM_HEIGHT = 10.0, 3.0
+
+
+def lamp_room(count, radius, watts=1000.0, cells=20, cells_up=6):
+    """A 10 x 10 x 3 m grey room (albedo 0.6, `cells` x `cells` quads on the floor and ceiling,
+    `cells` x `cells_up` on each wall, one mesh, normals inside) lit by `count` point lamps of
+    `radius`, `watts` in all: one 2 m over the centre of the floor, or many on a jittered grid
+    between 1 m from the walls and heights of 1 to 2.5 m. Returns the room."""
+    s, h = LAMP_ROOM_SIZE, LAMP_ROOM_HEIGHT
+    pieces = [
+        grid((0, 0, 0), (s, 0, 0), (0, s, 0), cells, cells),      # floor, facing +z
+        grid((0, 0, h), (0, s, 0), (s, 0, 0), cells, cells),      # ceiling, facing -z
+        grid((0, 0, 0), (0, 0, h), (s, 0, 0), cells_up, cells),   # y = 0, facing +y
+        grid((0, s, 0), (s, 0, 0), (0, 0, h), cells, cells_up),   # y = s, facing -y
+        grid((0, 0, 0), (0, s, 0), (0, 0, h), cells, cells_up),   # x = 0, facing +x
+        grid((s, 0, 0), (0, 0, h), (0, s, 0), cells_up, cells),   # x = s, facing -x
+    ]
+    room = mesh_object("Room", [piece + (0,) for piece in pieces], [diffuse("Grey", (0.6,) * 3)])
+    for k, position in enumerate(lamp_room_positions(count)):
+        lamp = bpy.data.lights.new("Bulb %d" % k, "POINT")
+        lamp.energy, lamp.shadow_soft_size = watts / count, radius
+        obj = bpy.data.objects.new(lamp.name, lamp)
+        obj.location = tuple(position)
+        bpy.context.scene.collection.objects.link(obj)
+    return room
+
+
+def lamp_room_positions(count):
+    if count == 1:
+        return np.array([[LAMP_ROOM_SIZE / 2, LAMP_ROOM_SIZE / 2, 2.0]])
+    side = int(np.ceil(np.sqrt(count)))
+    random = np.random.default_rng(7)
+    cells = np.array([(i, j) for i in range(side) for j in range(side)][:count], dtype=np.float64)
+    xy = 1.0 + (cells + random.uniform(0.0, 1.0, cells.shape)) * (LAMP_ROOM_SIZE - 2.0) / side
+    return np.column_stack([xy, random.uniform(1.0, 2.5, count)])
+
+
+def lamp_room_surfaces(positions):
+    """{name: mask} of the floor, the ceiling and the four walls for lamp_room's `positions`."""
+    eps, s, h = 1e-4, LAMP_ROOM_SIZE, LAMP_ROOM_HEIGHT
+    x, y, z = positions.T
+    names = {"floor": z < eps, "ceiling": z > h - eps}
+    side = ~names["floor"] & ~names["ceiling"]
+    names.update({"wall y=0": side & (y < eps), "wall y=10": side & (y > s - eps),
+                  "wall x=0": side & (x < eps), "wall x=10": side & (x > s - eps)})
+    return names

@@ -167,10 +167,10 @@ def test_lamps_in_cycles_units():
         bpy.context.scene.collection.objects.link(obj)
 
     tilt = Matrix.Rotation(0.5, 4, "X")
-    lamp("Point", "POINT", 100.0, (1, 0.5, 0.25), Matrix.Translation((1, 2, 3)), shadow_soft_size=0.0)
+    lamp("Point", "POINT", 100.0, (1, 0.5, 0.25), Matrix.Translation((1, 2, 3)), shadow_soft_size=0.05)
     lamp("Spot", "SPOT", 50.0, (1, 1, 1), Matrix.Translation((0, 0, 2)) @ tilt,
          shadow_soft_size=0.0, spot_size=1.0, spot_blend=0.3)
-    lamp("Sun", "SUN", 3.0, (1, 1, 0.5), tilt, angle=0.0)
+    lamp("Sun", "SUN", 3.0, (1, 1, 0.5), tilt, angle=0.2)
     lamp("Area", "AREA", 20.0, (1, 1, 1), Matrix.Translation((0, 0, 2)) @ tilt @ Matrix.Diagonal((2, 1, 1, 1)),
          shape="RECTANGLE", size=0.5, size_y=0.25)
     exported, _ = exported_scene()
@@ -179,6 +179,11 @@ def test_lamps_in_cycles_units():
 
     np.testing.assert_allclose(by_type["POINT"]["intensity"], np.array([100, 50, 25]) / (4 * math.pi), rtol=1e-6)
     np.testing.assert_allclose(by_type["POINT"]["position"], (1, 2, 3))
+    # Cycles' disk facing the point (3.x; 4.x with Soft Falloff, the default), or a sphere.
+    assert abs(by_type["POINT"]["radius"] - 0.05) < 1e-6 and by_type["POINT"]["shape"] == "DISK", by_type["POINT"]
+    assert by_type["SPOT"]["radius"] == 0.0, by_type["SPOT"]
+    assert abs(by_type["SUN"]["half_angle"] - 0.1) < 1e-6, by_type["SUN"]
+    assert by_type["SUN"]["disk_directions"] == (bpy.app.version < (4, 0, 0)), by_type["SUN"]
     np.testing.assert_allclose(by_type["SPOT"]["intensity"], [50 / (4 * math.pi)] * 3, rtol=1e-6)
     np.testing.assert_allclose(by_type["SPOT"]["direction"], down_tilted, atol=1e-6)
     assert abs(by_type["SPOT"]["half_angle"] - 0.5) < 1e-6 and abs(by_type["SPOT"]["blend"] - 0.3) < 1e-6

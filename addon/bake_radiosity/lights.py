@@ -8,7 +8,14 @@ strength to colour x power and then:
   also multiplies it by the cosine of the angle off the spot's axis (kernel/light/light.h,
   spot_light_attenuation), 4.0 and later do not (kernel/light/spot.h). Measured against Cycles
   3.4 and 5.2 (blender_test_lamps): 16% apart over a 100 degree spot's floor.
-- sun: irradiance strength W/m^2 on a surface facing it.
+- point and spot with a radius: to Cycles 3.x, and to 4.0 and later while the lamp's Soft Falloff
+  is on (Blender's default), a disk of that radius facing the shading point; to 4.0 and later with
+  Soft Falloff off a sphere (kernel/light/point.h). The core takes the shape ("DISK", "SPHERE").
+  Measured in Blender 3.4 (blender_test_lamp_radius): Cycles gives the disk's irradiance exactly,
+  I / (d^2 + r^2) at the foot of a lamp d from a wall.
+- sun: irradiance strength W/m^2 on a surface facing it, from a cone of half its angle: to Cycles
+  3.x directions uniform over a disk of radius tan(angle / 2) one unit out (distant_light_sample),
+  to 4.0 and later uniform over the cone.
 - area: one-sided radiance strength / (4 A) from the lamp's -Z side, A = size_x * size_y
   (times the object's scale, times pi/4 for disk and ellipse). From Blender 4.0 on, Cycles
   converts a lamp's radiant flux to radiance by pi (scene/light.cpp: eval_fac = invarea / pi):
@@ -41,8 +48,6 @@ from .engine.errors import BakeError
 # would set the hemi-cube resolution of the whole bake.
 ELLIPSE_GRID = 4
 
-RADIUS = "Radius treated as 0, hard shadows"
-SUN_ANGLE = "Sun angle treated as 0, hard shadows"
 SPREAD = "Spread ignored, the lamp emits over the full hemisphere"
 NODES_VARY = ("Lamp node tree not followed (nodes drive its Emission, which the bake cannot average); "
               "baked as the lamp without its node tree")
@@ -121,18 +126,22 @@ def point_like(light_object, matrix, strength):
     of (problem, item) pairs."""
     light = light_object.data
     problems = []
+    legacy = bpy.app.version < (4, 0, 0)
     if light.type in {"POINT", "SPOT"}:
-        if light.shadow_soft_size > 0.0:
-            problems.append((RADIUS, (light_object.name, "%.3g m" % light.shadow_soft_size)))
         entry = {"type": light.type, "position": tuple(matrix.translation),
-                 "intensity": tuple(strength / (4.0 * math.pi))}
+                 "intensity": tuple(strength / (4.0 * math.pi)), "radius": max(0.0, float(light.shadow_soft_size)),
+                 "shape": lamp_shape(light)}
         if light.type == "SPOT":
             entry.update(direction=_emitting_axis(light_object, matrix), half_angle=0.5 * light.spot_size,
-                         blend=light.spot_blend, cosine_profile=bpy.app.version < (4, 0, 0))
+                         blend=light.spot_blend, cosine_profile=legacy)
         return entry, problems
-    if light.angle > 0.0:
-        problems.append((SUN_ANGLE, (light_object.name, "%.3g deg" % math.degrees(light.angle))))
-    return {"type": "SUN", "direction": _emitting_axis(light_object, matrix), "irradiance": tuple(strength)}, problems
+    return {"type": "SUN", "direction": _emitting_axis(light_object, matrix), "irradiance": tuple(strength),
+            "half_angle": min(0.5 * float(light.angle), 0.5 * math.pi - 1e-6), "disk_directions": legacy}, problems
+
+
+def lamp_shape(light):
+    """What a point or spot lamp's radius makes it to this Blender's Cycles (see the top)."""
+    return "DISK" if getattr(light, "use_soft_falloff", True) else "SPHERE"
 
 
 def area_quads(light_object, matrix, strength):

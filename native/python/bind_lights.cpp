@@ -39,6 +39,33 @@ Rgb colour_entry(const py::dict& lamp, const char* key, std::size_t index) {
     return c;
 }
 
+/// A non-negative finite number entry, `fallback` when absent.
+double size_entry(const py::dict& lamp, const char* key, std::size_t index, double fallback) {
+    const double value = lamp.contains(key) ? lamp[key].cast<double>() : fallback;
+    if (!(value >= 0.0) || !std::isfinite(value))
+        throw InputError("light " + std::to_string(index) + ": '" + key + "' must be a finite number, 0 or more");
+    return value;
+}
+
+SunLight parse_sun(const py::dict& lamp, std::size_t index) {
+    SunLight sun{unit_entry(lamp, "direction", index), colour_entry(lamp, "irradiance", index)};
+    sun.half_angle = static_cast<float>(size_entry(lamp, "half_angle", index, 0.0));
+    if (!(sun.half_angle < M_PI / 2))
+        throw InputError("light " + std::to_string(index) + ": a sun's 'half_angle' must be below pi/2");
+    if (lamp.contains("disk_directions")) sun.disk_directions = lamp["disk_directions"].cast<bool>();
+    return sun;
+}
+
+/// A point or spot lamp's radius and what it is to Cycles: 'shape' SPHERE or DISK (default).
+void parse_size(const py::dict& lamp, std::size_t index, PointLight& light) {
+    light.radius = static_cast<float>(size_entry(lamp, "radius", index, 0.0));
+    const std::string shape = lamp.contains("shape") ? lamp["shape"].cast<std::string>() : "DISK";
+    if (shape == "SPHERE")
+        light.shape = LampShape::Sphere;
+    else if (shape != "DISK")
+        throw InputError("light " + std::to_string(index) + ": shape must be 'SPHERE' or 'DISK'");
+}
+
 }  // namespace
 
 Lights parse_lights(const py::list& lamps) {
@@ -47,7 +74,7 @@ Lights parse_lights(const py::list& lamps) {
         const py::dict lamp = lamps[i].cast<py::dict>();
         const std::string type = lamp.contains("type") ? lamp["type"].cast<std::string>() : "";
         if (type == "SUN") {
-            lights.suns.push_back({unit_entry(lamp, "direction", i), colour_entry(lamp, "irradiance", i)});
+            lights.suns.push_back(parse_sun(lamp, i));
             continue;
         }
         if (type != "POINT" && type != "SPOT")
@@ -55,6 +82,7 @@ Lights parse_lights(const py::list& lamps) {
         PointLight light;
         light.position = Vec3(vector_entry(lamp, "position", i));
         light.intensity = colour_entry(lamp, "intensity", i);
+        parse_size(lamp, i, light);
         if (type == "SPOT") {
             light.direction = unit_entry(lamp, "direction", i);
             const double half_angle = lamp.contains("half_angle") ? lamp["half_angle"].cast<double>() : NAN;

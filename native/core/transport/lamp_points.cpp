@@ -1,6 +1,9 @@
 /// @file lamp_points.cpp
-/// @brief The lamps' irradiance at points, one shadow ray per lamp (lamp_points.h, lights.h).
+/// @brief The lamps' irradiance at points (lamp_points.h, lights.h).
 #include "transport/lamp_points.h"
+
+#include "transport/cone.h"
+#include "transport/lamp_choice.h"
 
 #include <tbb/parallel_for.h>
 #include <glm/common.hpp>
@@ -13,22 +16,20 @@ namespace radiosity {
 namespace detail {
 
 Rgb lamp_irradiance(const Lights& lights, const hr::Visibility& visibility, const Vec3& x, const Vec3& normal) {
-    Rgb irradiance(0.0);
-    for (const PointLight& lamp : lights.points) {
-        const Vec3 d = lamp.position - x;
-        const float distance2 = glm::dot(d, d);
-        if (!(distance2 > 0.0f)) continue;
-        const Vec3 u = d / std::sqrt(distance2);
-        const float cosine = glm::dot(normal, u);
-        const float profile = spot_profile(lamp, -u);
-        if (cosine > 0.0f && profile > 0.0f && visibility.clear(x, lamp.position))
-            irradiance += lamp.intensity * double(cosine * profile / distance2);
-    }
-    for (const SunLight& sun : lights.suns) {
-        const float cosine = -glm::dot(normal, sun.direction);
-        if (cosine > 0.0f && visibility.clear_towards(x, -sun.direction)) irradiance += sun.irradiance * double(cosine);
-    }
-    return irradiance;
+    thread_local std::vector<Rgb> unshadowed;
+    const std::size_t points = lights.points.size();
+    unshadowed.resize(points + lights.suns.size());
+    for (std::size_t l = 0; l < points; ++l) unshadowed[l] = point_unshadowed(lights.points[l], x, normal);
+    for (std::size_t s = 0; s < lights.suns.size(); ++s)
+        unshadowed[points + s] = sun_unshadowed(lights.suns[s], normal);
+    return sum_over_lamps(unshadowed, position_seed(x, 0x1A3FU), [&](std::size_t l, uint32_t seed, bool fully) {
+        if (l < points) {
+            const PointLight& lamp = lights.points[l];
+            return point_irradiance(lamp, visibility, x, normal, fully ? point_rays(lamp, x) : 1, seed);
+        }
+        const SunLight& sun = lights.suns[l - points];
+        return sun_irradiance(sun, visibility, x, normal, fully ? sun_rays(sun) : 1, seed);
+    });
 }
 
 }  // namespace detail

@@ -1,63 +1,79 @@
 /// @file lights.cpp
-/// @brief Point and spot lamps by a full cube around the lamp; sun lamps by a parallel projection.
-///
-/// A lamp's cube item buffer tells which element each direction hits first; the flux an element
-/// receives is sum over its cells of I(direction) * solid angle, and its irradiance that flux over
-/// its area. This conserves the lamp's power exactly and shadows come for free.
+/// @brief The lamps' direct light onto elements (lights.h): point and spot lamps by their exact
+/// unshadowed power on each element and shadow rays from a few of its points, suns by a parallel
+/// projection (sun_raster.h).
 #include "transport/lights.h"
 
+#include "common/parallel_rows.h"
 #include "common/report_progress.h"
+#include "common/stratified.h"
+#include "transport/cone.h"
+#include "transport/lamp_choice.h"
 #include "transport/sun_raster.h"
-#include "visibility/hemicube.h"
+#include "visibility/shadow_ray.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <array>
+#include <limits>
+
 namespace radiosity {
-
-float spot_profile(const PointLight& light, const Vec3& direction_from_light) {
-    if (light.cos_half_angle <= -1.0f) return 1.0f;
-    const float cos_angle = glm::dot(direction_from_light, light.direction);
-    if (cos_angle <= light.cos_half_angle) return 0.0f;
-    const float t = cos_angle - light.cos_half_angle;
-    const float falloff = light.cosine_profile ? cos_angle : 1.0f;
-    if (light.smooth <= 0.0f || t >= light.smooth) return falloff;
-    const float s = t / light.smooth;
-    return falloff * s * s * (3.0f - 2.0f * s);
-}
-
 namespace {
 
-void add_point_light(const Elements& elements, const PointLight& light, Hemicube& cube, std::vector<Rgb>& irradiance) {
-    cube.render_sphere(elements, light.position, -1);
-    const std::vector<float>& solid_angle = cube.weights().solid_angle;
-    std::vector<float> weight(solid_angle);
-    if (light.cos_half_angle > -1.0f)
-        for (std::size_t cell = 0; cell < weight.size(); ++cell)
-            weight[cell] *= spot_profile(light, cube.cell_direction(cell));
-    SparseRow flux;
-    cube.accumulate(weight, flux);
-    for (std::size_t k = 0; k < flux.col.size(); ++k) {
-        const int32_t j = flux.col[k];
-        irradiance[j] += light.intensity * (double(flux.val[k]) / elements.area[j]);
+constexpr int kGrid = 2;  // stratified points per element edge whose shadow rays share its light
+
+/// The light of the point and spot lamps on element `e`.
+Rgb element_irradiance(const Elements& elements, std::size_t e, const std::vector<PointLight>& lamps,
+                       const hr::Visibility& visibility) {
+    std::array<Vec3, 4> corners;
+    const int count = elements.corner_count(e);
+    for (int k = 0; k < count; ++k) corners[k] = elements.vertices[elements.corners[e][k]];
+    const Vec3 n = elements.normal[e];
+    thread_local std::vector<Rgb> unshadowed;
+    unshadowed.resize(lamps.size());
+    for (std::size_t l = 0; l < lamps.size(); ++l)
+        unshadowed[l] = point_polygon_unshadowed(lamps[l], corners.data(), count, n, elements.area[e]);
+    const uint32_t seed = detail::position_seed(elements.centre[e], 0xE1EU);
+    std::array<Vec3, kGrid * kGrid> points;
+    detail::stratified_points(corners.data(), count, kGrid, seed, points.data());
+    return detail::sum_over_lamps(unshadowed, seed, [&](std::size_t l, uint32_t ray_seed, bool fully) {
+        double lit = 0.0, all = 0.0;
+        for (const Vec3& x : points) {
+            const PointLight& lamp = lamps[l];
+            all += max_channel(point_unshadowed(lamp, x, n));
+            lit += max_channel(point_irradiance(lamp, visibility, x, n, fully ? point_rays(lamp, x) : 1, ray_seed));
+            ray_seed = detail::mix_seed(ray_seed, 1U);
+        }
+        return all > 0.0 ? unshadowed[l] * (lit / all) : Rgb(0.0);
+    });
+}
+
+float scene_size(const Elements& elements) {
+    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const Vec3& v : elements.vertices) {
+        low = glm::min(low, v);
+        high = glm::max(high, v);
     }
+    return std::max(glm::length(high - low), 1e-6f);
 }
 
 }  // namespace
 
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress) {
     std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
-    const std::size_t total = lights.points.size() + lights.suns.size();
-    std::size_t done = 0;
+    if (elements.size() == 0) return irradiance;
     if (!lights.points.empty()) {
-        Hemicube cube(CubeWeights::make(lights.resolution));
-        for (const PointLight& light : lights.points) {
-            add_point_light(elements, light, cube, irradiance);
-            detail::report_progress(progress, "lights", ++done, total);
-        }
+        const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements), scene_size(elements));
+        detail::parallel_rows("lights", elements.size(), 16, elements.size(), progress, [&](std::size_t e) {
+            irradiance[e] = element_irradiance(elements, e, lights.points, visibility);
+            return true;
+        });
     }
+    std::size_t done = 0;
     for (const SunLight& sun : lights.suns) {
         add_sun_light(elements, sun, lights.resolution, irradiance);
-        detail::report_progress(progress, "lights", ++done, total);
+        detail::report_progress(progress, "lights", ++done, lights.suns.size());
     }
     return irradiance;
 }

@@ -295,6 +295,17 @@ class LightsTest(unittest.TestCase):
         power = float((result["element_radiance"][:, 0] * result["element_area"]).sum()) * math.pi / rho
         self.assertAlmostEqual(power, intensity * solid_angle, delta=1e-3 * power)
 
+    def test_lamp_radius_is_a_disk_or_a_sphere(self):
+        # 10 cm over the floor's corner (1, 1, 0), radius 5 cm: at that corner a disk facing it
+        # gives I / (h^2 + r^2), a sphere I / h^2 (its cone of 30 degrees is above the horizon).
+        intensity, h, r, rho = 2.0, 0.1, 0.05, 0.5
+        for shape, irradiance in (("DISK", intensity / (h * h + r * r)), ("SPHERE", intensity / (h * h))):
+            lamp = {"type": "POINT", "position": (1.0, 1.0, h), "intensity": (intensity,) * 3, "radius": r,
+                    "shape": shape}
+            result = _core.bake(*self.floor(rho), element_size=0.25, resolution=16, lights=[lamp], final_gather=True)
+            corner = result["corner_radiance"][2, 0]
+            self.assertAlmostEqual(corner, rho * irradiance / math.pi, delta=1e-4 * corner)
+
     def test_uniform_world_on_a_lone_floor_gives_rho_w(self):
         rho, sky = 0.5, np.array([0.3, 0.6, 1.2], dtype=np.float32)
         for method in ("gauss_seidel", "hierarchical"):
@@ -313,6 +324,12 @@ class LightsTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "light 1: 'direction' has zero length"):
             _core.bake(*self.floor(), lights=[{"type": "POINT", "position": (0, 0, 1), "intensity": (1, 1, 1)},
                                               {"type": "SUN", "direction": (0, 0, 0), "irradiance": (1, 1, 1)}])
+        with self.assertRaisesRegex(ValueError, "light 0: shape must be"):
+            _core.bake(*self.floor(), lights=[{"type": "POINT", "position": (0, 0, 1), "intensity": (1, 1, 1),
+                                               "shape": "CUBE"}])
+        with self.assertRaisesRegex(ValueError, "light 0: 'radius' must be"):
+            _core.bake(*self.floor(), lights=[{"type": "POINT", "position": (0, 0, 1), "intensity": (1, 1, 1),
+                                               "radius": -1.0}])
 
 
 class ProgressTest(unittest.TestCase):
