@@ -81,6 +81,8 @@ def main():
     parser.add_argument("--quality", default="DRAFT,MEDIUM,HIGH")
     parser.add_argument("--blend", help="measure this scene (e.g. a level of ../shared/levels) instead of level.py's")
     parser.add_argument("--object", default="BakeMesh", help="with --blend: the mesh object measured")
+    parser.add_argument("--save", help="a .npz to keep each preset's per-vertex luminance, the truth and the "
+                                       "vertices' positions in (for looking at where the error sits)")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
     if args.blend:
@@ -107,6 +109,10 @@ def main():
         measured, clean = error(luminance_per_vertex(obj.data, colors))
         print("Cycles %5d samples: %6.1f CPU s, %6.1f wall s: %.2f%% (%.2f%% without the truth's noise)"
               % (samples, cpu, wall, 100 * measured, 100 * clean), flush=True)
+    positions = np.empty(len(obj.data.vertices) * 3)
+    obj.data.vertices.foreach_get("co", positions)
+    saved = {"truth": truth, "truth_runs": runs, "positions": positions.reshape(-1, 3),
+             "lamps": np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])}
     for quality in args.quality.split(","):
         summary, cpu, wall = timed(lambda: addon.bake(bpy.context.scene, quality=quality))
         colors = harness.corner_colors(obj.data, "Radiosity")
@@ -119,6 +125,9 @@ def main():
               % (quality, summary["elements"], summary["method"], summary["resolution"], cpu, wall, 100 * measured,
                  100 * clean, mean_ratio, 100 * median), flush=True)
         print("seconds:", {k: round(v, 2) for k, v in summary.get("seconds", {}).items()}, flush=True)
+        saved[quality] = baked
+    if args.save:
+        np.savez(args.save, **saved)
     print("load %.1f" % os.getloadavg()[0])
 
 
