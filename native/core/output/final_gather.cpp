@@ -527,6 +527,62 @@ CornerWedges wedge_tables(const Gatherer& gatherer, const Elements& elements, co
     });
 }
 
+/// The element vertices gathered, each once, with one element around it: those holding input
+/// corners (the output) and those on seams (read by the output's rays).
+struct GatherPoints {
+    std::vector<int32_t> element_at;  ///< per element vertex: the element it is gathered in (-1: none)
+    std::vector<uint8_t> is_output;   ///< per element vertex: it holds an input corner
+    std::vector<int32_t> points;      ///< the element vertices gathered
+};
+
+GatherPoints gather_points(const Elements& elements, const std::vector<uint8_t>& seam) {
+    GatherPoints g{
+        std::vector<int32_t>(elements.vertices.size(), -1), std::vector<uint8_t>(elements.vertices.size(), 0), {}};
+    for (std::size_t e = elements.size(); e-- > 0;)
+        for (int k = 0; k < elements.corner_count(e); ++k) g.element_at[elements.corners[e][k]] = int32_t(e);
+    for (const int32_t v : elements.corner_vertex)
+        if (v >= 0 && g.element_at[v] >= 0) g.is_output[v] = 1;
+    for (std::size_t v = 0; v < elements.vertices.size(); ++v)
+        if (g.element_at[v] >= 0 && (g.is_output[v] || seam[v])) g.points.push_back(int32_t(v));
+    return g;
+}
+
+/// The diagonal of the elements' bounding box (at least 1e-6).
+float scene_diagonal(const Elements& elements) {
+    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const Vec3& v : elements.vertices) {
+        low = glm::min(low, v);
+        high = glm::max(high, v);
+    }
+    return std::max(glm::length(high - low), 1e-6f);
+}
+
+/// Each element's polygon's centre (its elements' centres, area-weighted), where points buried at
+/// their element are moved towards.
+class PolygonCentres {
+public:
+    explicit PolygonCentres(const Elements& elements) : elements_(elements) {
+        for (std::size_t e = 0; e < elements.size(); ++e) {
+            const std::size_t p = std::size_t(elements.polygon[e]);
+            if (p >= sum_.size()) {
+                sum_.resize(p + 1, glm::dvec3(0.0));
+                area_.resize(p + 1, 0.0);
+            }
+            sum_[p] += double(elements.area[e]) * glm::dvec3(elements.centre[e]);
+            area_[p] += double(elements.area[e]);
+        }
+    }
+    Vec3 operator()(std::size_t e) const {
+        const std::size_t p = std::size_t(elements_.polygon[e]);
+        return area_[p] > 0.0 ? Vec3(sum_[p] / area_[p]) : elements_.centre[e];
+    }
+
+private:
+    const Elements& elements_;
+    std::vector<glm::dvec3> sum_;
+    std::vector<double> area_;
+};
+
 /// Solves the seam points' light, each linear in the field at the seam vertices (SeamReads), by
 /// Jacobi sweeps until no value changes by more than 1e-6 of the largest (at most 200 sweeps):
 /// the same as gathering those points again and again from each other's values.
@@ -567,24 +623,10 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     const std::vector<int32_t> place = weld_points(elements.vertices, weld_tolerance(elements.vertices), places);
     const std::vector<uint8_t> seam = seam_vertices(elements, place, places);
 
-    // The element vertices gathered, each once, with one element around it: those holding input
-    // corners (the output) and those on seams (read by the output's rays).
-    std::vector<int32_t> element_at(elements.vertices.size(), -1);
-    for (std::size_t e = elements.size(); e-- > 0;)
-        for (int k = 0; k < elements.corner_count(e); ++k) element_at[elements.corners[e][k]] = int32_t(e);
-    std::vector<uint8_t> is_output(elements.vertices.size(), 0);
-    for (const int32_t v : elements.corner_vertex)
-        if (v >= 0 && element_at[v] >= 0) is_output[v] = 1;
-    std::vector<int32_t> points;
-    for (std::size_t v = 0; v < elements.vertices.size(); ++v)
-        if (element_at[v] >= 0 && (is_output[v] || seam[v])) points.push_back(int32_t(v));
-
-    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vec3& v : elements.vertices) {
-        low = glm::min(low, v);
-        high = glm::max(high, v);
-    }
-    const float scene_size = std::max(glm::length(high - low), 1e-6f);
+    const GatherPoints gathered = gather_points(elements, seam);
+    const std::vector<int32_t>&element_at = gathered.element_at, &points = gathered.points;
+    const std::vector<uint8_t>& is_output = gathered.is_output;
+    const float scene_size = scene_diagonal(elements);
     const hr::Visibility visibility(elements.vertices, ray_corners(elements, false), scene_size);
     std::optional<hr::Visibility> backs;
     if (std::any_of(elements.side.begin(), elements.side.end(), [](uint8_t s) { return s == Elements::kBack; }))
@@ -593,22 +635,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     const std::vector<Emitter> emitters = emitting_elements(elements, emitted);
     const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
-    // Polygon centres (area-weighted element centres) for points buried at their element.
-    std::vector<glm::dvec3> polygon_sum;
-    std::vector<double> polygon_area;
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-        const std::size_t p = std::size_t(elements.polygon[e]);
-        if (p >= polygon_sum.size()) {
-            polygon_sum.resize(p + 1, glm::dvec3(0.0));
-            polygon_area.resize(p + 1, 0.0);
-        }
-        polygon_sum[p] += double(elements.area[e]) * glm::dvec3(elements.centre[e]);
-        polygon_area[p] += double(elements.area[e]);
-    }
-    auto polygon_centre = [&](std::size_t e) {
-        const std::size_t p = std::size_t(elements.polygon[e]);
-        return polygon_area[p] > 0.0 ? Vec3(polygon_sum[p] / polygon_area[p]) : elements.centre[e];
-    };
+    const PolygonCentres polygon_centre(elements);
 
     // The first pass reads the interpolated solution, or the field gathered from it. Points whose rays met a seam read
     // the other surface's light right at it, where interpolation is least like the light (a room's corner is half lit
