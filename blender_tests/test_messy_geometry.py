@@ -5,11 +5,16 @@ quality it bakes in about the time of the same shelf without them, with the same
 ordinary faces; the faces without area are counted and named, and their corners take the light of
 the shelf around them."""
 
-import bpy
-import numpy as np
+import os
+import sys
 
-import harness
-import scenes
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+import scenes  # noqa: E402
 
 args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
