@@ -13,11 +13,13 @@
 #include "geometry/polygon_geometry.h"
 #include "geometry/surface_textures.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -518,6 +520,16 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     detail::report_progress(progress, "elements", in.face_count, in.face_count);
     if (in.textures) detail::texture_elements(in, out, progress);
     return result;
+}
+
+float scene_diagonal(const std::vector<Vec3>& points) {
+    if (points.empty()) return 1.0f;
+    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+    for (const Vec3& v : points) {
+        low = glm::min(low, v);
+        high = glm::max(high, v);
+    }
+    return std::max(glm::length(high - low), 1e-6f);
 }
 
 }  // namespace radiosity

@@ -144,4 +144,8 @@ struct ElementLimits {
 BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {},
                            const ProgressFn& progress = {});
 
+/// The diagonal of the points' bounding box, at least 1e-6 (1 for no points): the scale the
+/// gaps and lifts of rays are measured against.
+float scene_diagonal(const std::vector<Vec3>& points);
+
 }  // namespace radiosity

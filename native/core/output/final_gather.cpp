@@ -547,16 +547,6 @@ GatherPoints gather_points(const Elements& elements, const std::vector<uint8_t>&
     return g;
 }
 
-/// The diagonal of the elements' bounding box (at least 1e-6).
-float scene_diagonal(const Elements& elements) {
-    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vec3& v : elements.vertices) {
-        low = glm::min(low, v);
-        high = glm::max(high, v);
-    }
-    return std::max(glm::length(high - low), 1e-6f);
-}
-
 /// Each element's polygon's centre (its elements' centres, area-weighted), where points buried at
 /// their element are moved towards.
 class PolygonCentres {
@@ -626,7 +616,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     const GatherPoints gathered = gather_points(elements, seam);
     const std::vector<int32_t>&element_at = gathered.element_at, &points = gathered.points;
     const std::vector<uint8_t>& is_output = gathered.is_output;
-    const float scene_size = scene_diagonal(elements);
+    const float scene_size = scene_diagonal(elements.vertices);
     const hr::Visibility visibility(elements.vertices, ray_corners(elements, false), scene_size);
     std::optional<hr::Visibility> backs;
     if (std::any_of(elements.side.begin(), elements.side.end(), [](uint8_t s) { return s == Elements::kBack; }))

@@ -49,22 +49,14 @@ Rgb element_irradiance(const Elements& elements, std::size_t e, const std::vecto
     });
 }
 
-float scene_size(const Elements& elements) {
-    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vec3& v : elements.vertices) {
-        low = glm::min(low, v);
-        high = glm::max(high, v);
-    }
-    return std::max(glm::length(high - low), 1e-6f);
-}
-
 }  // namespace
 
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress) {
     std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
     if (elements.size() == 0) return irradiance;
     if (!lights.points.empty()) {
-        const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements), scene_size(elements));
+        const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements),
+                                        scene_diagonal(elements.vertices));
         detail::parallel_rows("lights", elements.size(), 16, elements.size(), progress, [&](std::size_t e) {
             irradiance[e] = element_irradiance(elements, e, lights.points, visibility);
             return true;

@@ -31,12 +31,7 @@ std::vector<Rgb> small_emitter_light(const Elements& elements, const std::vector
                                      const std::vector<Rgb>& emitted, const ProgressFn& progress) {
     std::vector<Rgb> incoming(elements.size(), Rgb(0.0));
     if (emitters.empty() || elements.size() == 0) return incoming;
-    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vec3& v : elements.vertices) {
-        low = glm::min(low, v);
-        high = glm::max(high, v);
-    }
-    const float scene_size = std::max(glm::length(high - low), 1e-6f);
+    const float scene_size = scene_diagonal(elements.vertices);
     const float lift = 1e-5f * scene_size;  // rays leave and reach a hair off both surfaces
     const hr::Visibility visibility(elements.vertices, blocking_corners(elements), scene_size);
     std::vector<float> radius(elements.size());

@@ -37,15 +37,6 @@ double pixel_solid_angle(const WorldLight& world, int j) {
     return 2.0 * M_PI / world.width * (cos_high - cos_low);
 }
 
-float scene_size_of(const std::vector<Vec3>& vertices) {
-    Vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-    for (const Vec3& v : vertices) {
-        low = glm::min(low, v);
-        high = glm::max(high, v);
-    }
-    return vertices.empty() ? 1.0f : std::max(glm::length(high - low), 1e-6f);
-}
-
 /// Points per edge of an element's grid for a cosine grid of `cos_grid`: each point takes about
 /// 4 x 4 directions of each strategy.
 int points_grid(int cos_grid) { return std::max(1, cos_grid / 4); }
@@ -262,7 +253,7 @@ std::vector<Rgb> world_irradiance(const Elements& elements, const WorldLight& wo
     std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
     const detail::WorldSampler sampler(world);
     if (sampler.empty() || elements.size() == 0) return irradiance;
-    const float scene_size = scene_size_of(elements.vertices);
+    const float scene_size = scene_diagonal(elements.vertices);
     const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements), scene_size);
     const float lift = 1e-5f * scene_size;
     detail::parallel_rows("world", elements.size(), 8, 0, progress, [&](std::size_t e) {
@@ -304,7 +295,7 @@ std::vector<Rgb> world_irradiance_at(const Elements& surfaces, const WorldLight&
     std::vector<Rgb> irradiance(points.size(), Rgb(0.0));
     const detail::WorldSampler sampler(world);
     if (sampler.empty()) return irradiance;
-    const float scene_size = scene_size_of(surfaces.vertices);
+    const float scene_size = scene_diagonal(surfaces.vertices);
     const hr::Visibility visibility(surfaces.vertices, surfaces.corners, scene_size);
     tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
         const Vec3 n = glm::normalize(normals[i]);
