@@ -118,6 +118,18 @@ def cycles_corner_bake(obj, samples, seed, diffuse_only=False):
     return corner_colors(obj.data, name)
 
 
+def cached_cycles_bakes(obj, path, samples, seeds=(1, 2)):
+    """Cycles' corner colours of `obj` for each of `seeds` (cycles_corner_bake), cached in the .npz
+    `path`: `colors` (seeds, corners, 3), `samples` and the bakes' wall `seconds`."""
+    import numpy as np
+    if not os.path.exists(path):
+        start = time.perf_counter()
+        colors = np.array([cycles_corner_bake(obj, samples, seed) for seed in seeds])
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+        np.savez(path, colors=colors, samples=samples, seconds=time.perf_counter() - start)
+    return np.load(path)
+
+
 def run(*tests):
     """Runs each test function, reports, and raises if any failed."""
     failures = []
@@ -156,6 +168,16 @@ def drive_steps(steps, time_limit=None):
         os._exit(code)
 
     bpy.app.timers.register(drive, first_interval=1.0)
+
+
+def operator_error():
+    """The operator's ERROR report (bpy.ops raises it in the background), or None if it finished."""
+    try:
+        result = bpy.ops.radiosity.bake()
+    except RuntimeError as error:
+        return str(error)
+    assert result == {"FINISHED"}, result
+    return None
 
 
 def corner_positions(mesh):

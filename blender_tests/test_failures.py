@@ -30,22 +30,12 @@ def room_that_absorbs_nothing():
                        [walls, ceiling])
 
 
-def operator_error():
-    """The operator's ERROR report (bpy.ops raises it in the background), or None if it finished."""
-    try:
-        result = bpy.ops.radiosity.bake()
-    except RuntimeError as error:
-        return str(error)
-    assert result == {"FINISHED"}, result
-    return None
-
-
 def test_a_diverging_solve_is_a_report_and_changes_nothing():
     """Albedo 1 everywhere: nothing absorbs, the over-relaxed solve diverges. The core's message
     is the report, from the operator and from bake(); the batch command exits 1 with it."""
     room_that_absorbs_nothing()
     before = harness.file_state()
-    message = operator_error()
+    message = harness.operator_error()
     assert message is not None, "a bake of a room that absorbs nothing finished"
     assert "Bake Radiosity failed" in message and "diverged" in message, message
     assert "Traceback" not in message, message
@@ -85,7 +75,7 @@ def test_an_unwritable_media_folder_fails_before_the_solve():
     original_solve = pipeline.BakeJob.solve
     pipeline.BakeJob.solve = lambda job, progress=None: solved.append(job) or original_solve(job, progress)
     try:
-        message = operator_error()
+        message = harness.operator_error()
     finally:
         pipeline.BakeJob.solve = original_solve
     assert message is not None, "a bake into an unwritable media folder finished"

@@ -83,16 +83,6 @@ def overridden_mesh_room():
     return room
 
 
-def operator_error():
-    """The operator's ERROR report (bpy.ops raises it in the background), or None if it finished."""
-    try:
-        result = bpy.ops.radiosity.bake()
-    except RuntimeError as error:
-        return str(error)
-    assert result == {"FINISHED"}, result
-    return None
-
-
 class NoWork:
     """Fails the test if the bake chooses its settings (the first step of any work after reading
     the scene), and counts whether it was asked to."""
@@ -136,7 +126,7 @@ def reopened_light(path):
 def test_a_linked_room_is_refused_before_any_work_and_named():
     for make in (linked_room, overridden_room, overridden_mesh_room):
         make()
-        message = assert_refused_before_any_work(operator_error)
+        message = assert_refused_before_any_work(harness.operator_error)
         assert "room-library.blend" in message, message
         assert_refused_before_any_work(bake_error)
         print(make.__name__, message)
@@ -157,7 +147,7 @@ def test_a_linked_room_baked_into_a_local_mesh_keeps_its_light_after_reopening()
         make()
         if how == "operator":
             bpy.context.scene.radiosity.make_linked_local = True
-            assert operator_error() is None
+            assert harness.operator_error() is None
             warnings = []
         else:
             warnings = addon.bake(bpy.context.scene, make_linked_local=True)["warnings"]
@@ -202,7 +192,7 @@ def test_an_object_only_a_linked_collection_holds_is_refused_even_with_the_optio
     bpy.context.scene.collection.children.link(into.collections[0])
     local_panel()
     bpy.context.scene.radiosity.make_linked_local = True
-    message = assert_refused_before_any_work(operator_error)
+    message = assert_refused_before_any_work(harness.operator_error)
     assert "collection 'Set'" in message and "Library Override > Make" in message, message
 
 
@@ -237,7 +227,7 @@ def test_an_emitter_among_black_surfaces_has_no_nan_in_its_summary():
             assert "nan" not in lines.lower() and "inf" not in lines.lower(), lines
             assert "no reflected light to estimate from" in lines, lines
             assert summary["error_estimate"]["undefined"] == "no reflected light to estimate from", summary
-        assert operator_error() is None
+        assert harness.operator_error() is None
         assert "no reflected light" in bpy.context.scene.radiosity.last_accuracy
 
 

@@ -128,4 +128,11 @@ double worst_direct_light_error(const BakeResult& r, double rho) {
     return worst / peak;
 }
 
+double worst_relative_error(const std::vector<Rgb>& values, const Rgb& expected) {
+    double worst = 0.0;
+    for (const Rgb& L : values)
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(L[c] / expected[c] - 1.0));
+    return worst;
+}
+
 }  // namespace radiosity::test

@@ -53,4 +53,8 @@ std::size_t front_count(const Elements& e);
 /// take rho * area_flux(e, i, 0) / A_i. As a share of the largest exact value.
 double worst_direct_light_error(const BakeResult& r, double rho);
 
+/// The largest |value / expected - 1| over `values` and their channels: how far the worst of them
+/// is from a uniform exact answer (a furnace's E / (1 - rho)).
+double worst_relative_error(const std::vector<Rgb>& values, const Rgb& expected);
+
 }  // namespace radiosity::test

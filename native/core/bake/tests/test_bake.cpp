@@ -88,9 +88,7 @@ TEST(Bake, HierarchicalOutputIsGatheredToTheFurnace) {
         const BakeResult r = bake(box.input(), gathered(settings_for(Method::GaussSeidel, element_size), true));
         ASSERT_TRUE(r.hierarchy.has_value());
         EXPECT_EQ(r.gathered_points, 24u);
-        double worst = 0.0;
-        for (const Rgb& L : r.colors.input_corner)
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(L[c] / expected[c] - 1.0));
+        const double worst = test::worst_relative_error(r.colors.input_corner, expected);
         std::printf("hierarchical furnace element_size %.1f: %zu leaves, worst corner %.2e\n", element_size,
                     r.build.elements.size(), worst);
         EXPECT_LT(worst, 1e-3) << element_size;

@@ -500,9 +500,7 @@ TEST(FinalGather, FurnaceAtEveryCornerOfAClosedBox) {
         ASSERT_EQ(r.colors.input_corner.size(), 24u);
         EXPECT_EQ(r.gathered_points, 24u);
         EXPECT_EQ(r.buried_points, 0u);
-        double worst = 0.0;
-        for (const Rgb& L : r.colors.input_corner)
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(L[c] / expected[c] - 1.0));
+        const double worst = test::worst_relative_error(r.colors.input_corner, expected);
         std::printf("furnace element_size %.1f: worst corner %.2e\n", element_size, worst);
         EXPECT_LT(worst, 1e-3) << element_size;
     }
@@ -524,9 +522,7 @@ TEST(FinalGather, EmissionCountsOnceInARotatedFurnace) {
     for (const float element_size : {0.0f, 0.2f}) {
         const BakeResult r = bake(box.input(), gather_settings(element_size, true));
         EXPECT_EQ(r.gathered_points, 24u);
-        double worst = 0.0;
-        for (const Rgb& L : r.colors.input_corner)
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(L[c] / expected[c] - 1.0));
+        const double worst = test::worst_relative_error(r.colors.input_corner, expected);
         std::printf("rotated furnace element_size %.1f: worst corner %.2e\n", element_size, worst);
         EXPECT_LT(worst, 1e-3) << element_size;
     }
