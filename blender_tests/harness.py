@@ -120,9 +120,10 @@ def cycles_corner_bake(obj, samples, seed, diffuse_only=False):
 
 def cached_cycles_bakes(obj, path, samples, seeds=(1, 2)):
     """Cycles' corner colours of `obj` for each of `seeds` (cycles_corner_bake), cached in the .npz
-    `path`: `colors` (seeds, corners, 3), `samples` and the bakes' wall `seconds`."""
+    `path`: `colors` (seeds, corners, 3), `samples` and the bakes' wall `seconds`. A file without
+    `colors` (an older cache) is made again."""
     import numpy as np
-    if not os.path.exists(path):
+    if not os.path.exists(path) or "colors" not in np.load(path).files:
         start = time.perf_counter()
         colors = np.array([cycles_corner_bake(obj, samples, seed) for seed in seeds])
         os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)

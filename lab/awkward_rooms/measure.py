@@ -13,7 +13,6 @@ and compares the room's corners with Cycles' Combined bake of the room, the mean
 import argparse
 import os
 import sys
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender_tests"))
 
@@ -46,15 +45,6 @@ def _scale_about(centre, factor):
     return Matrix.Translation(centre) @ Matrix.Scale(factor, 4) @ Matrix.Translation([-c for c in centre])
 
 
-def truth(room, path, samples):
-    if not os.path.exists(path):
-        start = time.perf_counter()
-        halves = np.array([harness.cycles_corner_bake(room, samples, seed) for seed in (1, 2)])
-        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-        np.savez(path, halves=halves, samples=samples, seconds=time.perf_counter() - start)
-    return np.load(path)
-
-
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--addon-zip", required=True)
@@ -68,8 +58,8 @@ def main():
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
     room = build(args.scene, args.emitter_side, args.blocks if args.scene == "cluttered" else 0)
-    reference = truth(room, args.truth, args.samples)
-    halves = reference["halves"].mean(axis=2)  # grey per corner, per seed
+    reference = harness.cached_cycles_bakes(room, args.truth, args.samples)
+    halves = reference["colors"].mean(axis=2)  # grey per corner, per seed
     cycles = halves.mean(axis=0)
 
     with harness.Stopwatch() as seconds:

@@ -11,24 +11,13 @@ Combined bake (the mean of two seeds, cached in --truth, made when the file is m
 import argparse
 import os
 import sys
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender_tests"))
 
 import bpy  # noqa: E402
-import numpy as np  # noqa: E402
 
 import harness  # noqa: E402
 import scenes  # noqa: E402
-
-
-def truth(obj, path, samples):
-    if not os.path.exists(path):
-        start = time.perf_counter()
-        seeds = np.array([harness.cycles_corner_bake(obj, samples, seed).mean(axis=1) for seed in (1, 2)])
-        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-        np.savez(path, seeds=seeds, samples=samples, seconds=time.perf_counter() - start)
-    return np.load(path)
 
 
 def main():
@@ -42,8 +31,8 @@ def main():
     addon = harness.install_addon(args.addon_zip)
     scenes.clear_scene()
     room = scenes.lamp_room(args.lamps, args.radius)
-    reference = truth(room, args.truth, args.samples)
-    seeds = reference["seeds"]
+    reference = harness.cached_cycles_bakes(room, args.truth, args.samples)
+    seeds = reference["colors"].mean(axis=2)  # grey per corner, per seed
     with harness.Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene)
     baked = harness.corner_colors(room.data, "Radiosity").mean(axis=1)
