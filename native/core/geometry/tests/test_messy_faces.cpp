@@ -76,11 +76,11 @@ TEST(MessyFaces, AThinQuadIsCutAsItsLengthAsks) {
     EXPECT_EQ(build_elements(s.input(), kSize, sliver_limits()).elements.size(), 4u);
 }
 
-// The furnished room's book triangle (issue 29): three nearly collinear points 26 cm apart, area
-// 3.6e-9 m^2. At its element size of 0.334557 m the aspect cut made 2.37e6 elements of it and
-// stopped the bake at the element cap. Its 2.8e-8 m height is round-off 2 m from the origin (below
-// 2.4e-7 x 2 m): skipped. Ten times as high (aspect 1e6) and at the origin it is a face, which the
-// cut to 4:1 made 235,000 rows of; now one row for each of its two strips.
+// A book triangle from a downloaded model: three nearly collinear points 26 cm apart, area
+// 3.6e-9 m^2, at an element size of 0.334557 m. Its 2.8e-8 m height is round-off 2 m from the
+// origin (below 2.4e-7 x 2 m): skipped. Ten times as high (aspect 1e6) and at the origin it is a
+// face, which the cut's bound (no piece shorter than 1/32 of the element size) keeps to one row
+// for each of its two strips, where a cut to 4:1 alone would make 235,000 rows.
 TEST(MessyFaces, TheBookTriangleOfTheFurnishedRoomIsSkippedAndItsShapeBounded) {
     const float height = float(2.0 * 3.6e-9 / 0.26);
     SceneArrays s;
