@@ -127,7 +127,7 @@ struct BakeResult {
     double seconds_world = 0;         ///< the world's light on the elements (0 without a world)
     double seconds_gather = 0;        ///< the final gather (0 when off)
     std::size_t gathered_points = 0;  ///< output vertices whose colour the final gather computed
-    std::size_t buried_points = 0;    ///< output vertices inside other geometry: interpolated colour kept
+    std::size_t buried_points = 0;    ///< output vertices whose gathered light was not finite: interpolated colour kept
     /// What the final gather found at the output corners besides their colours (with the gather).
     std::optional<GatherStatistics> gather_statistics;
     std::size_t direct_emitters = 0;     ///< emitting elements lit directly (direct_emitter_area)

@@ -80,10 +80,12 @@ public:
     /// place get the same directions, so coplanar faces around a vertex differ only where the
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
     /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
-    /// same vertex picks the same point: the buried test does not read the solution).
+    /// same vertex picks the same point: the buried test does not read the solution). `moved`: whether
+    /// the first point was buried and another was taken.
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
                      Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
-                     SeamReads* reads = nullptr, PointStatistics* statistics = nullptr) const {
+                     SeamReads* reads = nullptr, PointStatistics* statistics = nullptr,
+                     uint8_t* moved = nullptr) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
@@ -117,9 +119,30 @@ public:
             if (reads != nullptr) reads->direct = direct_light;
             light = direct_light + indirect;
             out = emitted_[e] + elements_.reflectance[e] * light;
+            if (moved != nullptr) *moved = i > 0;
             return true;
         }
         return false;
+    }
+
+    /// The radiance at element vertex `vertex` of element `e` gathered at the point where Cycles
+    /// bakes it even where that is buried (inside other geometry): rays that meet back faces bring
+    /// nothing and the shadow rays find the lamps hidden, as Cycles' rays find the inside of a
+    /// closed solid unlit. Whether the point is buried there, as radiance_at judges it.
+    bool buried_at_corner(int32_t vertex, std::size_t e, const Vec3& approach, uint32_t place, Rgb& out,
+                          Rgb& light) const {
+        const Vec3 x = first_point(vertex, e, approach);
+        const Vec3 n = elements_.normal[e];
+        const Vec3 origin = lifted(x, n);
+        const uint32_t seed = mix_seed(place, 0x5EEDU);
+        Rgb indirect(0.0);
+        float seam_share = 0.0f;
+        const bool seen = gather_indirect(origin, n, seed, glm::length(elements_.centre[e] - x), indirect, seam_share,
+                                          nullptr, nullptr, true);
+        if (seen) return false;
+        light = direct(x, origin, n, seed) + indirect;
+        out = emitted_[e] + elements_.reflectance[e] * light;
+        return true;
     }
 
     /// The emitters' and lamps' direct light at `x`, a hair inside element `e`, in parts, seeded as
@@ -171,11 +194,12 @@ public:
 
 private:
     /// Mean of (radiance - own emission) over the first hits of cosine-weighted rays; false when
-    /// more than half of them hit a back face nearer than `near`. `seam_share`: the share of rays
+    /// more than half of them hit a back face nearer than `near` (buried: then `out` is left as it
+    /// was unless `even_buried`). `seam_share`: the share of rays
     /// that met another surface right at the point (closer than kSeam of the element hit). With
     /// `reads`, what those rays read of the field goes there as weights, the rest as its indirect.
     bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
-                         SeamReads* reads, PointStatistics* statistics) const {
+                         SeamReads* reads, PointStatistics* statistics, bool even_buried = false) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
@@ -207,7 +231,8 @@ private:
                 ++back_near;
             }
         }
-        if (2 * back_near > rays) return false;
+        const bool buried = 2 * back_near > rays;
+        if (buried && !even_buried) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
         spread.finish(out, rays);
@@ -220,7 +245,7 @@ private:
             }
             reads->indirect = rest / double(rays);
         }
-        return true;
+        return !buried;
     }
 
     /// The weights radiance_near gives the hit element's corner slots.
@@ -409,15 +434,27 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         }
 }
 
-/// Elements lit by an emitter nearer to them than half their size (a ceiling beside a panel hung 1
-/// cm under it): that light changes on the scale of the emitter's distance, which the element's
-/// corners do not resolve (the vertex at the panel's edge holds half its back side's light, the
-/// next vertex none, and the line between them is far too bright). Their corners' light is scaled
-/// to the element's solved light, which integrates the emitter over the element (the near field's
-/// exact area factors, near_field.h).
+/// Whether a point or spot lamp lies in front of the element (centre `centre`, unit normal
+/// `normal`, `size` from its centre to its farthest corner), nearer to its plane than half its size
+/// and over it: a lamp hung a few centimetres from a wall or inside a fixture.
+bool near_lamp(const Lights& lights, const glm::dvec3& centre, const glm::dvec3& normal, double size) {
+    return std::any_of(lights.points.begin(), lights.points.end(), [&](const PointLight& lamp) {
+        const glm::dvec3 offset = glm::dvec3(lamp.position) - centre;
+        const double distance = glm::dot(normal, offset);
+        return distance > 0.0 && distance < 0.5 * size && glm::length(offset) < size + double(lamp.radius);
+    });
+}
+
+/// Elements lit by an emitter or lamp nearer to them than half their size (a ceiling beside a panel
+/// hung 1 cm under it, a wall beside a lamp): that light changes on the scale of the source's
+/// distance, which the element's corners do not resolve (the vertex at the panel's edge holds half
+/// its back side's light, the next vertex none, and the line between them is far too bright; a
+/// corner next to a lamp holds its peak, the others almost nothing). Their corners' light is scaled
+/// to the element's solved light, which integrates the source over the element (the near field's
+/// exact area factors, near_field.h; the lamps' exact mean over the element, lights.h).
 void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rgb>& emitted,
                                   const std::vector<Rgb>& radiance, const std::vector<EmitterRun>& runs,
-                                  std::vector<Rgb>& field) {
+                                  const Lights& lights, std::vector<Rgb>& field) {
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (elements.is_back(e) || max_channel(emitted[e]) > 0.0) continue;
         const int count = elements.corner_count(e);
@@ -430,7 +467,7 @@ void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rg
             const double distance = glm::dot(run.normal, centre - run.point);
             return distance > 0.0 && distance < 0.5 * size && glm::length(centre - run.centre) < run.radius + size;
         });
-        if (!near_lit) continue;
+        if (!near_lit && !near_lamp(lights, centre, glm::dvec3(elements.normal[e]), size)) continue;
         for (int c = 0; c < 3; ++c) {
             double sum = 0.0;
             for (int k = 0; k < count; ++k) sum += field[4 * e + std::size_t(k)][c];
@@ -599,6 +636,34 @@ void solve_seams(const Elements& elements, const std::vector<Rgb>& emitted, cons
     }
 }
 
+/// Output corners whose point, where Cycles bakes them, lies inside other geometry (a face running
+/// on under a wall, into a beam or a brush) were gathered from a point moved to the visible side,
+/// which the field and the seams read, or not at all where every point was buried. What the corner
+/// shows is what Cycles bakes there: the light at that point, nearly none inside a closed solid,
+/// which both bakes then interpolate across the face alike.
+void bake_buried_corners_as_cycles(const Gatherer& gatherer, const std::vector<int32_t>& points,
+                                   const std::vector<int32_t>& element_at, const std::vector<uint8_t>& is_output,
+                                   const std::vector<uint8_t>& moved, const std::vector<Vec3>& approach,
+                                   const std::vector<int32_t>& place, const ProgressFn& progress,
+                                   std::vector<Rgb>& value, std::vector<Rgb>& light, std::vector<uint8_t>& done) {
+    std::vector<std::size_t> buried;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if ((moved[i] || !done[i]) && is_output[std::size_t(points[i])]) buried.push_back(i);
+    parallel_rows("gather buried corners", buried.size(), 4, 0, progress, [&](std::size_t t) {
+        const std::size_t i = buried[t];
+        const int32_t v = points[i];
+        Rgb L, H;
+        if (gatherer.buried_at_corner(v, std::size_t(element_at[std::size_t(v)]), approach[std::size_t(v)],
+                                      uint32_t(place[std::size_t(v)]), L, H) &&
+            std::isfinite(L.r + L.g + L.b + H.r + H.g + H.b)) {
+            value[i] = L;
+            light[i] = H;
+            done[i] = 1;
+        }
+        return true;
+    });
+}
+
 }  // namespace
 
 GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
@@ -644,7 +709,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
                                       field_settings, emitters, runs, visibility, back_sides, scene_size);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
-        keep_near_lit_elements_power(elements, emitted, radiance, runs, field);
+        keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
         // point (along the same shadow rays as at the vertex, the change has little noise).
         FinalGatherSettings wedge_settings = settings;
@@ -658,7 +723,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
     std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
     std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
-    std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0);
+    std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0), moved(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
     std::vector<SeamReads> reads(points.size());
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
@@ -696,7 +761,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             if ((is_output[points[i]] ? gatherer : seam_gatherer)
                     .radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
                                  uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
-                                 last ? &reads[i] : nullptr, &point_statistics[i]) &&
+                                 last ? &reads[i] : nullptr, &point_statistics[i], &moved[i]) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
@@ -715,9 +780,13 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
             if (done[i] && seam_share[i] > 0.0f) todo.push_back(i);
     }
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
+    const Gatherer corner_gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
+                                   visibility, back_sides, scene_size, &wedges);
+    bake_buried_corners_as_cycles(corner_gatherer, points, element_at, is_output, moved, approach, place, progress,
+                                  value, light, done);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the
-    // mean of its faces'); points still buried, or not finite, keep the interpolated colour.
+    // mean of its faces'); points whose light is not finite keep the interpolated colour.
     std::vector<int32_t> output_index(elements.vertices.size(), -1);
     for (std::size_t i = 0; i < points.size(); ++i)
         if (is_output[points[i]]) output_index[points[i]] = int32_t(i);

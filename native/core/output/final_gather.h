@@ -25,12 +25,14 @@
 /// (next to a block's foot the point is only 4.5e-5 above the floor). A point inside other geometry (more than half its
 /// rays hit a back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then towards its
 /// polygon's centre (1, 2 and 4 times as far as its element's centre: the element may lie wholly under what buries it,
-/// as a floor cut along a wall's footprint), so it takes its light from the visible side; if it is still buried, it
-/// keeps the interpolated colour. Every element vertex holding an input corner is gathered once, so each face's corner
-/// has its own value: where a block stands on a floor, the floor's faces around the block's corner see it differently
-/// (as Cycles bakes them). Where a smooth surface bends, its faces' corners share their mean (replace_corners,
-/// interpolation.h). Seeds come from the vertex's position (welded), so faces meeting at a vertex use the same rays and
-/// differ only where the light does, and the result does not depend on threads.
+/// as a floor cut along a wall's footprint), so that the field and the seams, which read it, take its light from the
+/// visible side. An output corner whose own point is buried (a face running on into a beam or under a wall, as in
+/// game levels built from overlapping brushes) then shows what Cycles bakes at that point: its rays meet back faces,
+/// which bring nothing, and its shadow rays find the lamps hidden. Every element vertex holding an input corner is
+/// gathered once, so each face's corner has its own value: where a block stands on a floor, the floor's faces around
+/// the block's corner see it differently (as Cycles bakes them). Where a smooth surface bends, its faces' corners share
+/// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded), so faces meeting at a
+/// vertex use the same rays and differ only where the light does, and the result does not depend on threads.
 ///
 /// The field the rays read: the solution interpolated to the elements' corners or, with
 /// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at
@@ -74,7 +76,7 @@ struct GatherCounts {
 };
 
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
-/// vertices gathered and those left interpolated (buried, or a non-finite result). `emitted` is
+/// vertices gathered and those left interpolated (a non-finite result). `emitted` is
 /// each element's own emission (without the lamps' and the world's first reflection), `radiance`
 /// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,

@@ -78,17 +78,20 @@ Rgb point_irradiance(const PointLight& light, const hr::Visibility& visibility, 
     const View v = view_of(light, x);
     const Rgb unshadowed = point_unshadowed(light, x, normal);
     if (!(max_channel(unshadowed) > 0.0)) return Rgb(0.0);
-    if (light.radius <= 0.0f) return visibility.clear(x, light.position) ? unshadowed : Rgb(0.0);
+    if (light.radius <= 0.0f) return visibility.clear_from_surface(x, normal, light.position) ? unshadowed : Rgb(0.0);
     const detail::Cone cone(v.axis, v.sin2 < 1.0 ? std::sqrt(1.0 - v.sin2) : -1.0);
     const glm::dvec3 n(normal);
     const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
     const double share = detail::lit_share(
         cone, n, grid, seed, [&](const glm::dvec3& u) { return double(spot_profile(light, Vec3(-u))); },
-        [&](const glm::dvec3& u) { return visibility.clear(x, x + Vec3(u * distance_to_lamp(light, v, u))); });
+        [&](const glm::dvec3& u) {
+            return visibility.clear_from_surface(x, normal, x + Vec3(u * distance_to_lamp(light, v, u)));
+        });
     if (share >= 0.0)
         return light.intensity *
                (radiance_scale(light) * detail::clipped_cone_cosine(glm::dot(n, v.axis), v.sin2) * share);
-    return visibility.clear(x, light.position) ? unshadowed : Rgb(0.0);  // the rays missed a sliver of cone
+    return visibility.clear_from_surface(x, normal, light.position) ? unshadowed
+                                                                    : Rgb(0.0);  // the rays missed a sliver of cone
 }
 
 Rgb point_polygon_unshadowed(const PointLight& light, const Vec3* corners, int count, const Vec3& normal, double area) {

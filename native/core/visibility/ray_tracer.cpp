@@ -156,6 +156,16 @@ bool Visibility::clear(const Vec3& from, const Vec3& to, float begin, float end)
     return !occluded(from, d, begin, end);
 }
 
+bool Visibility::clear_from_surface(const Vec3& from, const Vec3& normal, const Vec3& to) const {
+    const Vec3 origin = from + std::max(gap_, 1e-6f) * normal;
+    const Vec3 d = to - origin;
+    const float length = glm::length(d);
+    if (!(length > 0.0f)) return true;
+    const float end = 1.0f - std::max(1e-4f, gap_ / length);
+    if (!(0.0f < end)) return true;
+    return !occluded(origin, d, 0.0f, end);
+}
+
 bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
     return !occluded(from, direction, std::max(gap_, 1e-6f), 2.0f * scene_size_ + 1.0f);
 }

@@ -1,6 +1,6 @@
 /// @file test_point_light.cpp
 /// @brief Point lamps with a radius against integrals over their sphere or disk: the near field,
-/// the horizon and a half-hidden lamp.
+/// the horizon, a half-hidden lamp and one hidden by the face beside a corner.
 #include "transport/cone.h"
 #include "transport/point_light.h"
 
@@ -131,6 +131,21 @@ TEST(PointLight, AHalfHiddenLampGivesHalfItsLight) {
         const PointLight l = lamp(shape, Vec3(0, 0, 0.1f), 0.05f);
         const double whole = traced(l, Vec3(0), *scene_of());
         EXPECT_NEAR(traced(l, Vec3(0), *shelf), whole / 2, 0.02 * whole / 2) << int(shape);
+    }
+}
+
+TEST(PointLight, TheFaceBesideACornerHidesAFarLamp) {
+    // A wall facing +x meets a roof (z = 0, over x in [0, 1]) at the corner where Cycles bakes it:
+    // 0.5 mm from the wall and 0.4 mm under the roof. A lamp 8.5 m away up and out from the wall is
+    // behind the roof seen from there. Rays that left a gap of a ten-thousandth of their length
+    // (0.85 mm) passed through the roof and lit the point.
+    const auto roof = scene_of({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const Vec3 x(0.0005f, 0.5f, -0.0004f), wall_normal(1, 0, 0);
+    for (const float radius : {0.0f, 0.05f}) {
+        const PointLight l = lamp(LampShape::Sphere, Vec3(3, 0.5f, 8), radius);
+        ASSERT_GT(max_channel(point_unshadowed(l, x, wall_normal)), 0.0);
+        EXPECT_EQ(max_channel(point_irradiance(l, *roof, x, wall_normal, 64, 7)), 0.0) << radius;
+        EXPECT_GT(max_channel(point_irradiance(l, *scene_of(), x, wall_normal, 64, 7)), 0.0) << radius;
     }
 }
 

@@ -1,0 +1,85 @@
+"""A converted level (or any scene) baked at Medium with its gathered solution's settings varied,
+against a deep Cycles truth that lab/interior/measure.py cached: the mean over the lit vertices and
+the luminance-weighted ratio to the truth by distance from the nearest lamp (bounce-lit rooms lie
+far from every lamp), each with the truth's own standard error. Run inside Blender:
+
+    BLENDER_USER_SCRIPTS=$(mktemp -d) BLENDER_USER_CONFIG=$(mktemp -d) \\
+      blender -b --factory-startup --python-exit-code 1 --python lab/levels/variants.py -- \\
+        --addon-zip build/bake_radiosity.zip --blend /tmp/oa/q3dm6ish.blend \\
+        --truth /var/cache/bake-radiosity/levels/q3dm6ish_1024.npz --variants 16/4/3136/64,32/4/3136/64
+
+A variant is divisions/cells/rays/field_rays of Medium's gathered solution (auto_settings.Gathered);
+"-" bakes Medium as it is.
+"""
+
+import argparse
+import dataclasses
+import os
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "blender_tests"))
+
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import harness  # noqa: E402
+
+BANDS = ((0.0, 1.0), (1.0, 2.0), (2.0, 4.0), (4.0, 8.0), (8.0, float("inf")))
+
+
+def luminance_per_vertex(mesh, corner_colors):
+    """Mean over each vertex's corners of the luminance (Rec. 709) of (loops, 3) colours."""
+    vertex = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", vertex)
+    y = corner_colors @ np.array([0.2126, 0.7152, 0.0722])
+    return np.bincount(vertex, y, len(mesh.vertices)) / np.maximum(np.bincount(vertex, None, len(mesh.vertices)), 1)
+
+
+def report(name, baked, truth_runs, positions, lamps, cpu):
+    truth = truth_runs.mean(axis=0)
+    lit = truth > 0.01 * truth.mean()
+    distance = np.min(np.linalg.norm(positions[:, None, :] - lamps[None, :, :], axis=2), axis=1)
+    median = float(np.median(np.abs(baked[lit] / truth[lit] - 1)))
+    print("%s: %.1f CPU s, mean %.4f of the truth, median per vertex %.2f%%"
+          % (name, cpu, baked[lit].sum() / truth[lit].sum(), 100 * median), flush=True)
+    for low, high in BANDS:
+        band = lit & (distance >= low) & (distance < high)
+        if not band.any():
+            continue
+        error = np.sqrt(truth_runs[:, band].sum(axis=1).var(ddof=1) / len(truth_runs)) / truth[band].sum()
+        print("  %4.1f to %4.1f m from a lamp: %4d vertices, %.4f +- %.4f"
+              % (low, high, band.sum(), baked[band].sum() / truth[band].sum(), error), flush=True)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--addon-zip", required=True)
+    parser.add_argument("--blend", required=True)
+    parser.add_argument("--object", default="BakeMesh")
+    parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
+    parser.add_argument("--variants", default="-")
+    args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
+    addon = harness.install_addon(args.addon_zip)
+    bpy.ops.wm.open_mainfile(filepath=args.blend)
+    obj = bpy.data.objects[args.object]
+    cached = np.load(args.truth)
+    positions = cached["positions"].reshape(-1, 3)
+    lamps = np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
+    auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
+    for variant in args.variants.split(","):
+        presets = dict(auto_settings.PRESETS)
+        if variant != "-":
+            divisions, cells, rays, field_rays = variant.split("/")
+            gathered = dataclasses.replace(presets["MEDIUM"].gathered, divisions=int(divisions), cells=float(cells),
+                                           rays=int(rays), field_rays=int(field_rays))
+            presets["MEDIUM"] = dataclasses.replace(presets["MEDIUM"], gathered=gathered)
+        with harness.patched_setting("PRESETS", presets):
+            with harness.Stopwatch() as seconds:
+                summary = addon.bake(bpy.context.scene, quality="MEDIUM")
+        baked = luminance_per_vertex(obj.data, harness.corner_colors(obj.data, "Radiosity"))
+        report("%s (%d elements, %s)" % (variant, summary["elements"], summary["method"]), baked,
+               cached["runs"], positions, lamps, seconds.cpu)
+
+
+main()
