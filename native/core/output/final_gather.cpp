@@ -5,6 +5,7 @@
 #include "common/parallel_rows.h"
 #include "common/stratified.h"
 #include "geometry/weld.h"
+#include "output/coincident_faces.h"
 #include "output/corner_approach.h"
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
@@ -59,7 +60,7 @@ public:
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
              const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, const hr::Visibility* back_sides,
-             float scene_size, const CornerWedges* wedges = nullptr)
+             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -70,6 +71,7 @@ public:
           runs_(runs),
           visibility_(visibility),
           back_sides_(back_sides),
+          coincident_(coincident),
           wedges_(wedges),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
@@ -110,6 +112,7 @@ public:
         }
         for (int i = 0; i < count; ++i) {
             const Vec3 x = candidates[i];
+            if (coincident_.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
             const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads, statistics))
@@ -128,11 +131,17 @@ public:
     /// The radiance at element vertex `vertex` of element `e` gathered at the point where Cycles
     /// bakes it even where that is buried (inside other geometry): rays that meet back faces bring
     /// nothing and the shadow rays find the lamps hidden, as Cycles' rays find the inside of a
-    /// closed solid unlit. Whether the point is buried there, as radiance_at judges it.
+    /// closed solid unlit; on another face facing the same way, only its own emission. Whether the
+    /// point is buried there, as radiance_at judges it.
     bool buried_at_corner(int32_t vertex, std::size_t e, const Vec3& approach, uint32_t place, Rgb& out,
                           Rgb& light) const {
         const Vec3 x = first_point(vertex, e, approach);
         const Vec3 n = elements_.normal[e];
+        if (coincident_.covered(x, e)) {
+            light = Rgb(0.0);
+            out = emitted_[e];
+            return true;
+        }
         const Vec3 origin = lifted(x, n);
         const uint32_t seed = mix_seed(place, 0x5EEDU);
         Rgb indirect(0.0);
@@ -371,6 +380,7 @@ private:
     const std::vector<EmitterRun>& runs_;
     const hr::Visibility& visibility_;
     const hr::Visibility* back_sides_;  ///< the back sides alone (null: there are none)
+    const CoincidentFaces& coincident_;
     const CornerWedges* wedges_;
     float scene_size_;
     int grid_, shadow_rays_;
@@ -687,6 +697,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     if (std::any_of(elements.side.begin(), elements.side.end(), [](uint8_t s) { return s == Elements::kBack; }))
         backs.emplace(elements.vertices, ray_corners(elements, true), scene_size);
     const hr::Visibility* back_sides = backs ? &*backs : nullptr;
+    const CoincidentFaces coincident(elements, 2e-6f * scene_size);
     const std::vector<Emitter> emitters = emitting_elements(elements, emitted);
     const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
@@ -706,7 +717,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, runs, visibility, back_sides, scene_size);
+                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
@@ -716,7 +727,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, runs, visibility, back_sides, scene_size);
+                                      emitters, runs, visibility, back_sides, coincident, scene_size);
         wedges = wedge_tables(wedge_gatherer, elements, turning_vertices(elements, place, places), place, element_at,
                               approach, scene_size, progress);
     }
@@ -750,9 +761,9 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                visibility, back_sides, scene_size, &wedges);
+                                visibility, back_sides, coincident, scene_size, &wedges);
         const Gatherer seam_gatherer(elements, emitted, radiance, field, lights, world_sampler, seam_settings, emitters,
-                                     runs, visibility, back_sides, scene_size, &wedges);
+                                     runs, visibility, back_sides, coincident, scene_size, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
@@ -781,7 +792,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     }
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
     const Gatherer corner_gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                   visibility, back_sides, scene_size, &wedges);
+                                   visibility, back_sides, coincident, scene_size, &wedges);
     bake_buried_corners_as_cycles(corner_gatherer, points, element_at, is_output, moved, approach, place, progress,
                                   value, light, done);
 

@@ -3,7 +3,7 @@
 /// exact direct light from an emitter and from a point lamp where interpolation is far off, floor
 /// corners at a block's corner lit from the side Cycles bakes them from, the exact light on both
 /// sides of a contact line, the field gathered at the elements' vertices under a coarse solution,
-/// the light turning around a fin's foot,
+/// the light turning around a fin's foot, corners inside a wall or on another face black as in Cycles,
 /// the furnace at every corner (seams of a closed box), determinism, and cancelling.
 #include "bake/bake.h"
 
@@ -303,6 +303,30 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
         else
             EXPECT_GT(worst, 2e-2);
     }
+}
+
+TEST(FinalGather, CornersLyingOnAnotherFaceAreBlackAsInCycles) {
+    // A 2 m square of its own lies on the floor (the same plane, facing up, as duplicate faces of
+    // game levels do), under a point lamp. Cycles' rays leave a point without an offset and meet
+    // the other face's back at distance 0: the square's corners, which lie on the floor, and the
+    // floor's corners at the origin, which lie on the square, bake black. The floor's outer
+    // corners lie on nothing else and take the lamp's exact light.
+    const double h = 0.5;
+    const Rgb rho(0.5, 0.6, 0.7), I(1.0, 2.0, 3.0);
+    test::SceneArrays s;
+    add_floor(s, rho);
+    s.add_quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, rho);
+    const BakeResult r = bake_under_lamp(s, I, h, true);
+    std::vector<std::size_t> on_another = corners_at(s, Vec3(0.0f));
+    for (const float x : {-1.0f, 1.0f})
+        for (const float y : {-1.0f, 1.0f})
+            for (const std::size_t c : corners_at(s, Vec3(x, y, 0.0f))) on_another.push_back(c);
+    ASSERT_EQ(on_another.size(), 8u);
+    for (const std::size_t c : on_another) EXPECT_EQ(max_channel(r.colors.input_corner[c]), 0.0) << c;
+    const double d2 = 50.0 + h * h;
+    const Rgb outer = rho * I * (h / std::sqrt(d2) / d2 / M_PI);
+    EXPECT_LT(worst_relative_error(r, corners_at(s, Vec3(5.0f, 5.0f, 0.0f)), outer), 1e-3);
+    EXPECT_EQ(r.buried_points, 0u);
 }
 
 TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {

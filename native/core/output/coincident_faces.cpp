@@ -1,0 +1,75 @@
+/// @file coincident_faces.cpp
+/// @brief Elements of different polygons lying on each other (coincident_faces.h).
+#include "output/coincident_faces.h"
+
+#include "geometry/box_tree.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+namespace radiosity::detail {
+namespace {
+
+/// Normals closer than this cosine face the same way (0.8 degrees).
+constexpr float kSameWay = 0.9999f;
+
+Box element_box(const Elements& elements, std::size_t e, float tolerance) {
+    Box box{glm::vec3(elements.vertices[std::size_t(elements.corners[e][0])]), glm::vec3(0.0f)};
+    box.hi = box.lo;
+    for (int k = 1; k < elements.corner_count(e); ++k) {
+        const glm::vec3 v = elements.vertices[std::size_t(elements.corners[e][k])];
+        box.lo = glm::min(box.lo, v);
+        box.hi = glm::max(box.hi, v);
+    }
+    box.lo -= glm::vec3(tolerance);
+    box.hi += glm::vec3(tolerance);
+    return box;
+}
+
+}  // namespace
+
+CoincidentFaces::CoincidentFaces(const Elements& elements, float tolerance)
+    : elements_(elements), tolerance_(tolerance), partners_(elements.size()) {
+    std::vector<Box> boxes(elements.size());
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        boxes[e] =
+            elements.is_back(e) ? Box{glm::vec3(INFINITY), glm::vec3(-INFINITY)} : element_box(elements, e, tolerance);
+    std::mutex found;
+    BoxTree(boxes).visit_overlapping_pairs([&](int32_t a, int32_t b) {
+        const std::size_t i = std::size_t(a), j = std::size_t(b);
+        if (elements.polygon[i] == elements.polygon[j] || glm::dot(elements.normal[i], elements.normal[j]) < kSameWay ||
+            std::abs(glm::dot(elements.centre[j] - elements.centre[i], elements.normal[i])) > tolerance)
+            return;
+        const std::lock_guard<std::mutex> lock(found);
+        partners_[i].push_back(b);
+        partners_[j].push_back(a);
+    });
+    for (std::vector<int32_t>& partners : partners_) std::sort(partners.begin(), partners.end());
+}
+
+bool CoincidentFaces::covered(const Vec3& x, std::size_t e) const {
+    const std::vector<int32_t>& partners = partners_[e];
+    return std::any_of(partners.begin(), partners.end(), [&](int32_t h) { return inside(x, std::size_t(h)); });
+}
+
+std::size_t CoincidentFaces::covered_elements() const {
+    return std::size_t(std::count_if(partners_.begin(), partners_.end(), [](const auto& p) { return !p.empty(); }));
+}
+
+bool CoincidentFaces::inside(const Vec3& x, std::size_t h) const {
+    const glm::dvec3 n(elements_.normal[h]), p(x);
+    const int count = elements_.corner_count(h);
+    for (int k = 0; k < count; ++k) {
+        const glm::dvec3 a(elements_.vertices[std::size_t(elements_.corners[h][k])]);
+        const glm::dvec3 b(elements_.vertices[std::size_t(elements_.corners[h][(k + 1) % count])]);
+        const double length = glm::length(b - a);
+        if (!(glm::dot(glm::cross(b - a, p - a), n) > tolerance_ * length)) return false;
+    }
+    return true;
+}
+
+}  // namespace radiosity::detail

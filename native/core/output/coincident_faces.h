@@ -1,0 +1,38 @@
+/// @file coincident_faces.h
+/// @brief Where elements of different polygons lie on each other, facing the same way (internal).
+///
+/// Game levels built from brushes, and models merged from parts, hold duplicate and overlapping
+/// coplanar faces. Cycles' rays leave a point without an offset, skipping only the face they leave:
+/// every ray from a point where another face lies on its own meets that face's back at distance 0,
+/// and Cycles bakes the point black (so it renders such places, too). The final gather's rays leave
+/// a hair above their point and would pass the other face, so the gather asks here instead.
+#pragma once
+
+#include "geometry/scene.h"
+
+#include <vector>
+
+namespace radiosity::detail {
+
+class CoincidentFaces {
+public:
+    /// Pairs of front-facing elements of different polygons, facing the same way (normals within
+    /// 0.8 degrees) in planes no farther apart than `tolerance` metres, whose bounding boxes meet.
+    CoincidentFaces(const Elements& elements, float tolerance);
+
+    /// Whether `x`, a point of element `e`, lies inside an element of another polygon that lies on
+    /// `e` (farther than `tolerance` inside each of its edges).
+    bool covered(const Vec3& x, std::size_t e) const;
+
+    /// Elements with at least one such partner.
+    std::size_t covered_elements() const;
+
+private:
+    bool inside(const Vec3& x, std::size_t h) const;
+
+    const Elements& elements_;
+    float tolerance_;
+    std::vector<std::vector<int32_t>> partners_;  ///< per element, sorted; empty for most
+};
+
+}  // namespace radiosity::detail
