@@ -9,8 +9,11 @@ default preset with Light Group Layers on.
   Emit bake of it into a colour attribute), is the layers' sum so weighted (1e-5) and matches a bake
   with the Key lamp's power doubled and the Fill lamp's halved, rendered the same way (0.5% of each
   corner): Cycles takes a corner's colour a little inside its faces, so both sides go through it;
-- Apply Light Mix writes that mix into the usual attribute."""
+- Apply Light Mix writes that mix into the usual attribute;
+- with a memory budget that holds the form factors but not the layers too, the bake says so and
+  bakes without them."""
 
+import math
 import os
 import sys
 
@@ -190,6 +193,24 @@ def test_wired_mix_renders_as_the_bake_with_the_lamps_changed():
     error = worst_relative(applied, colours("Reference"))
     print("applied mix against the bake with the lamps changed: worst corner %.2g" % error)
     assert error < MIX_TOLERANCE, error
+    assert bpy.ops.radiosity.unwire() == {"FINISHED"}  # the wired materials would emit in the next bake
 
 
-harness.run(test_layers_sum_and_each_is_its_group_alone, test_wired_mix_renders_as_the_bake_with_the_lamps_changed)
+def test_over_the_budget_bakes_without_layers():
+    scene = bpy.context.scene
+    summary = addon.bake(scene, attribute_name="Measured", light_group_layers=True)
+    bound, layer_bytes = summary["matrix_bytes_bound"], summary["light_layers"]["bytes"]
+    budget = math.ceil(bound / 2 ** 20)  # megabytes: holds the form factors, not the layers too
+    assert budget * 2 ** 20 < bound + layer_bytes, (bound, layer_bytes)
+    summary = addon.bake(scene, attribute_name="Budget", light_group_layers=True, memory_budget=budget)
+    assert summary["light_layers"] is None and summary["matrix_stored"], summary
+    said = [w for w in summary["warnings"] if "Light group layers need" in w]
+    assert said and "baked without them" in said[0], summary["warnings"]
+    print(said[0])
+    mesh = bpy.data.objects["Floor"].data
+    assert mesh.color_attributes.get("Budget") is not None
+    assert not [a.name for a in mesh.color_attributes if a.name.startswith("Budget ")]
+
+
+harness.run(test_layers_sum_and_each_is_its_group_alone, test_wired_mix_renders_as_the_bake_with_the_lamps_changed,
+            test_over_the_budget_bakes_without_layers)

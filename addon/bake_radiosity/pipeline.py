@@ -283,7 +283,8 @@ def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
     resolution_reason, near_field, tolerance, matrix memory), the World's light baked (world: name,
-    rendered, width, height, description; None when none) and what lights the bake (lit_by),
+    rendered, width, height, description; None when none) and what lights the bake (lit_by), the
+    light group layers written (light_layers: groups, bytes, attributes; None without),
     energy (watts emitted, absorbed, lost, created), error_estimate (the typical relative error per
     corner, its relation and source, its parts from the gather: sampling, the solution's bias and the
     field's light; the solve's bound), warnings, and seconds per phase (export, form_factors, solve,

@@ -1,8 +1,8 @@
 """What light group layers cost over the ordinary bake: the Cornell box of blender_tests/scenes.py lit
 by its ceiling opening and 8 point lamps under the ceiling, baked at a preset without layers and with
 1, 2 and 8 light groups (lamp i in group i mod G, the opening in group 0). Prints wall and CPU
-seconds, the phases, and the layers' memory (the add-on's bound, which the summary names). Run
-inside Blender:
+seconds, the phases, the layers' memory (the add-on's bound, which the summary names) and the
+process's peak resident memory (run one group count a process to compare those). Run inside Blender:
 
     BLENDER_USER_SCRIPTS=$(mktemp -d) BLENDER_USER_CONFIG=$(mktemp -d) \\
       blender -b --factory-startup --python-exit-code 1 --python lab/light_groups/measure.py -- \\
@@ -12,6 +12,7 @@ inside Blender:
 import argparse
 import math
 import os
+import resource
 import sys
 import time
 
@@ -40,13 +41,13 @@ def lit_box():
 
 
 def group_sources(box, groups):
-    """Lamp i in group i mod `groups`, the box (its opening emits) in group 0; no groups for 0."""
+    """Lamp i in group i mod `groups`, the box (its opening emits) in group 0; no groups for 0 (groups that
+    light nothing have no layer)."""
     view_layer = bpy.context.view_layer
-    while len(view_layer.lightgroups):
-        view_layer.lightgroups.remove(view_layer.lightgroups[0])
     names = ["G%d" % g for g in range(groups)]
     for name in names:
-        view_layer.lightgroups.add(name=name)
+        if name not in [g.name for g in view_layer.lightgroups]:
+            view_layer.lightgroups.add(name=name)
     box.lightgroup = names[0] if names else ""
     for i in range(LAMPS):
         bpy.data.objects["Lamp %d" % i].lightgroup = names[i % groups] if names else ""
@@ -67,9 +68,10 @@ def main():
         phases = {k: round(v, 1) for k, v in summary["seconds"].items() if v >= 0.05}
         layers = summary["light_layers"]
         memory = "%.1f MB" % (layers["bytes"] / 2 ** 20) if layers else "none"
-        print("%d groups: %d elements, %.1f wall s, %.1f CPU s, load %.1f, layers' memory %s; %s"
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+        print("%d groups: %d elements, %.1f wall s, %.1f CPU s, load %.1f, layers' memory %s, peak resident %.0f MB; %s"
               % (groups, summary["elements"], time.perf_counter() - wall, time.process_time() - cpu,
-                 os.getloadavg()[0], memory, phases), flush=True)
+                 os.getloadavg()[0], memory, peak, phases), flush=True)
 
 
 main()

@@ -84,7 +84,7 @@ def refusal(layers: Layers, method: str, media: bool, matrix_bytes: int, element
                 "without them" % ("with media" if media else "hierarchical"))
     needed = layer_bytes(len(layers.names), elements, corners)
     if matrix_bytes + needed > budget_bytes:
-        return ("Light group layers need %.0f MB, which with the form factors' %.0f MB is more than the memory "
+        return ("Light group layers need %.1f MB, which with the form factors' %.1f MB is more than the memory "
                 "budget (%.0f MB): baked without them; raise the Memory Budget to bake them"
                 % (needed / MEBIBYTE, matrix_bytes / MEBIBYTE, budget_bytes / MEBIBYTE))
     return None
