@@ -55,6 +55,10 @@ class Budget(unittest.TestCase):
         self.assertIn("hierarchical", light_groups.refusal(self.layers(2), "hierarchical", False, 0, 10, 10, 1 << 30))
         self.assertIn("media", light_groups.refusal(self.layers(2), "progressive", True, 0, 10, 10, 1 << 30))
 
+    def test_refused_when_a_group_has_the_no_group_layers_name(self):
+        layers = light_groups.Layers(["", "(no group)"], np.zeros(0, np.int32), np.zeros(0, np.int32), 0)
+        self.assertIn("rename it", light_groups.refusal(layers, "gauss_seidel", False, 0, 10, 10, 1 << 30))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -15,8 +15,8 @@ from . import native
 
 MEBIBYTE = 1 << 20
 NO_GROUP = ""
-# Blender keeps light group names to letters, digits and underscores, so neither the space nor the
-# parentheses of these names can meet a group's.
+# The layer of the sources without a group: "<attribute> (no group)". A light group named "(no group)"
+# would share it (refusal says so).
 NO_GROUP_SUFFIX = " (no group)"
 # The add-on's own copies of each layer's colours (float32: half the core's doubles).
 PYTHON_COPY_SHARE = 0.5
@@ -79,6 +79,9 @@ def refusal(layers: Layers, method: str, media: bool, matrix_bytes: int, element
     """Why the bake cannot add the layers (it then bakes without them), or None: the uniform methods
     only, and the layers with the stored form factors (`matrix_bytes`, 0 when rendered on demand)
     within the memory budget."""
+    if NO_GROUP in layers.names and NO_GROUP_SUFFIX.strip() in layers.names:
+        return ("A light group is named '%s', the name of the layer of lights without a group: rename it to bake "
+                "light group layers; baked without them" % NO_GROUP_SUFFIX.strip())
     if method == "hierarchical" or media:
         return ("Light group layers are baked by the uniform methods without fog or smoke (this bake is %s): baked "
                 "without them" % ("with media" if media else "hierarchical"))
