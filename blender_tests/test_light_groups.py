@@ -11,7 +11,8 @@ default preset with Light Group Layers on.
   corner): Cycles takes a corner's colour a little inside its faces, so both sides go through it;
 - Apply Light Mix writes that mix into the usual attribute;
 - with a memory budget that holds the form factors but not the layers too, the bake says so and
-  bakes without them."""
+  bakes without them;
+- the hierarchical method bakes the layers over one refinement: they sum to its attribute."""
 
 import math
 import os
@@ -212,5 +213,14 @@ def test_over_the_budget_bakes_without_layers():
     assert not [a.name for a in mesh.color_attributes if a.name.startswith("Budget ")]
 
 
+def test_hierarchical_layers_sum_to_its_bake():
+    summary = addon.bake(bpy.context.scene, attribute_name="Tree", light_group_layers=True, method="HIERARCHICAL",
+                         element_size=0.1)
+    assert summary["method"] == "hierarchical" and summary["light_layers"]["groups"] == list(GROUPS), summary
+    error = worst_relative(sum(colours("Tree " + g) for g in GROUPS), colours("Tree"))
+    print("hierarchical: layers' sum against its attribute: worst corner %.2g" % error)
+    assert error < SUM_TOLERANCE, error
+
+
 harness.run(test_layers_sum_and_each_is_its_group_alone, test_wired_mix_renders_as_the_bake_with_the_lamps_changed,
-            test_over_the_budget_bakes_without_layers)
+            test_over_the_budget_bakes_without_layers, test_hierarchical_layers_sum_to_its_bake)

@@ -66,9 +66,10 @@ class BakeJob:
         world_group = getattr(scene.world, "lightgroup", "") if self.world_baked() else None
         layers = light_groups.layers_of(e.light_group_names, e.polygon_light_group, e.emission, e.lamp_light_groups,
                                         world_group, [g.name for g in getattr(view_layer, "lightgroups", ())])
-        matrix_bytes = c.matrix_bytes_bound if c.matrix_bytes_bound <= c.budget_bytes else 0
-        refusal = light_groups.refusal(layers, c.method, bool(self.media.media), matrix_bytes, c.elements,
-                                       len(e.corner_vertices), c.budget_bytes)
+        stored = c.method != "hierarchical" and c.matrix_bytes_bound <= c.budget_bytes
+        refusal = light_groups.refusal(layers, c.method, bool(self.media.media), c.gather_rays > 0,
+                                       c.matrix_bytes_bound if stored else 0, c.elements, len(e.corner_vertices),
+                                       c.budget_bytes)
         if refusal:
             self.warnings.append(refusal)
             return None
@@ -127,6 +128,8 @@ class BakeJob:
         keywords = self.core_settings()
         if self.layers is not None:
             keywords["layers"] = self.layers.keyword()
+            if self.method == "hierarchical":  # its nodes and links take what the layers leave of the budget
+                keywords["max_bytes"] = self.choice.budget_bytes - self.layer_bytes
         self.result = solve.bake(self.exported, keywords, progress)
         self._fill_skipped_corners()
         self.warnings += self._skipped_warnings()

@@ -136,8 +136,8 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="Also write one colour attribute per light group that lights the scene ('<Attribute> <group>', "
                     "'<Attribute> (no group)' for lamps, emitters and the World without one), each the light of "
                     "that group alone with every bounce; they sum to the usual attribute. Wire Baked Light then "
-                    "mixes them with the strengths and tints below, live (uniform methods, within the Memory "
-                    "Budget)",
+                    "mixes them with the strengths and tints below, live (within the Memory Budget; not with fog or "
+                    "smoke; hierarchically with the Final Gather)",
         default=False,
     )
     light_layers: CollectionProperty(type=RadiosityLightLayer, name="Light Layers",

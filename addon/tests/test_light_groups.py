@@ -48,16 +48,19 @@ class Budget(unittest.TestCase):
 
     def test_refused_beyond_the_budget_with_the_form_factors_and_for_the_hierarchy(self):
         needed = light_groups.layer_bytes(8, 1000, 4000)
-        self.assertIsNone(light_groups.refusal(self.layers(8), "gauss_seidel", False, 1000, 1000, 4000, needed + 1000))
-        message = light_groups.refusal(self.layers(8), "gauss_seidel", False, 1001, 1000, 4000, needed + 1000)
+        refusal = light_groups.refusal
+        self.assertIsNone(refusal(self.layers(8), "gauss_seidel", False, True, 1000, 1000, 4000, needed + 1000))
+        message = refusal(self.layers(8), "gauss_seidel", False, True, 1001, 1000, 4000, needed + 1000)
         self.assertIn("memory budget", message)
         self.assertIn("baked without them", message)
-        self.assertIn("hierarchical", light_groups.refusal(self.layers(2), "hierarchical", False, 0, 10, 10, 1 << 30))
-        self.assertIn("media", light_groups.refusal(self.layers(2), "progressive", True, 0, 10, 10, 1 << 30))
+        self.assertIsNone(refusal(self.layers(8), "hierarchical", False, True, 0, 1000, 4000, needed + 1))
+        self.assertIn("memory budget", refusal(self.layers(8), "hierarchical", False, True, 0, 1000, 4000, needed))
+        self.assertIn("Final Gather", refusal(self.layers(2), "hierarchical", False, False, 0, 10, 10, 1 << 30))
+        self.assertIn("fog or smoke", refusal(self.layers(2), "progressive", True, True, 0, 10, 10, 1 << 30))
 
     def test_refused_when_a_group_has_the_no_group_layers_name(self):
         layers = light_groups.Layers(["", "(no group)"], np.zeros(0, np.int32), np.zeros(0, np.int32), 0)
-        self.assertIn("rename it", light_groups.refusal(layers, "gauss_seidel", False, 0, 10, 10, 1 << 30))
+        self.assertIn("rename it", light_groups.refusal(layers, "gauss_seidel", False, True, 0, 10, 10, 1 << 30))
 
 
 if __name__ == "__main__":

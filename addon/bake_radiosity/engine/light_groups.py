@@ -74,19 +74,21 @@ def layer_bytes(layers: int, elements: int, corners: int) -> int:
     return int(core * (1.0 + PYTHON_COPY_SHARE))
 
 
-def refusal(layers: Layers, method: str, media: bool, matrix_bytes: int, elements: int, corners: int,
+def refusal(layers: Layers, method: str, media: bool, gathered: bool, matrix_bytes: int, elements: int, corners: int,
             budget_bytes: int) -> Optional[str]:
-    """Why the bake cannot add the layers (it then bakes without them), or None: the uniform methods
-    only, and the layers with the stored form factors (`matrix_bytes`, 0 when rendered on demand)
-    within the memory budget."""
+    """Why the bake cannot add the layers (it then bakes without them), or None: not with fog or
+    smoke, hierarchically only with the final gather (`gathered`: every layer lights the same leaves),
+    and the layers with the stored form factors (`matrix_bytes`, 0 when not stored: the hierarchy's
+    nodes and links take what the layers leave of the budget) within the memory budget."""
     if NO_GROUP in layers.names and NO_GROUP_SUFFIX.strip() in layers.names:
         return ("A light group is named '%s', the name of the layer of lights without a group: rename it to bake "
                 "light group layers; baked without them" % NO_GROUP_SUFFIX.strip())
-    if method == "hierarchical" or media:
-        return ("Light group layers are baked by the uniform methods without fog or smoke (this bake is %s): baked "
-                "without them" % ("with media" if media else "hierarchical"))
+    if media:
+        return "Light group layers are not baked with fog or smoke yet: baked without them"
+    if method == "hierarchical" and not gathered:
+        return "Hierarchical light group layers need the Final Gather (Target: Original Meshes): baked without them"
     needed = layer_bytes(len(layers.names), elements, corners)
-    if matrix_bytes + needed > budget_bytes:
+    if matrix_bytes + needed > budget_bytes or needed >= budget_bytes:
         return ("Light group layers need %.1f MB, which with the form factors' %.1f MB is more than the memory "
                 "budget (%.0f MB): baked without them; raise the Memory Budget to bake them"
                 % (needed / MEBIBYTE, matrix_bytes / MEBIBYTE, budget_bytes / MEBIBYTE))

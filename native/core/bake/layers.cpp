@@ -2,6 +2,7 @@
 /// @brief The light groups' layers over one shared transport, and their sum (layers.h).
 #include "bake/layers.h"
 
+#include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
 #include <algorithm>
@@ -18,10 +19,11 @@ void check_layer(int32_t layer, int count, const char* what, std::size_t index) 
 }
 
 void check(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources) {
-    if (settings.hierarchical.enabled || !settings.media.media.empty())
+    if (!settings.media.media.empty()) throw InputError("light group layers are not baked with media yet");
+    if (settings.hierarchical.enabled && !settings.final_gather.enabled)
         throw InputError(
-            "light group layers are baked by the uniform methods (Gauss-Seidel, Jacobi, progressive "
-            "refinement) without media");
+            "hierarchical light group layers need the final gather: its output is the same leaves in "
+            "every layer");
     if (sources.count < 1) throw InputError("a layered bake needs at least one layer");
     if (sources.polygon.size() != input.face_count || sources.point.size() != settings.lights.points.size() ||
         sources.sun.size() != settings.lights.suns.size())
@@ -147,10 +149,52 @@ void add_layer(BakeResult& total, const BakeResult& layer, bool first) {
     total.direct_emitters = std::max(total.direct_emitters, layer.direct_emitters);
     // Whether a corner is gathered or buried depends on the geometry alone: the same in every layer.
     total.gathered_points = layer.gathered_points;
+    if (layer.hierarchy) total.hierarchy = layer.hierarchy;
     total.buried_points = layer.buried_points;
     if (layer.gather_statistics)
         add(total.gather_statistics ? *total.gather_statistics : total.gather_statistics.emplace(),
             *layer.gather_statistics);
+}
+
+/// Which sources shine in layer `layer`.
+SourceMask layer_mask(const LayerSources& sources, int32_t layer) {
+    SourceMask on;
+    for (const int32_t l : sources.polygon) on.polygon.push_back(l == layer);
+    for (const int32_t l : sources.point) on.point.push_back(l == layer);
+    for (const int32_t l : sources.sun) on.sun.push_back(l == layer);
+    on.world = sources.world == layer;
+    return on;
+}
+
+/// The layers over one refined hierarchy: its links and leaves refined for all sources, each
+/// layer's links solved from its own and its leaves' corners gathered with its own.
+LayeredBake hierarchical_layers(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources,
+                                const ProgressFn& progress) {
+    const HierarchySettings h = detail::hierarchy_settings(settings);
+    RefinedHierarchy refined(input, h, progress);
+    LayeredBake layered;
+    std::vector<Rgb> emission;
+    for (int32_t k = 0; k < sources.count; ++k) {
+        HierarchyResult lit = refined.light(layer_mask(sources, k), progress);
+        const std::vector<Rgb> emitted = std::move(lit.output_emitted);
+        BakeResult& layer = layered.layers.emplace_back(detail::as_bake_result(std::move(lit)));
+        const LayerInput layer_input(input, sources, k);
+        detail::output_pass(layer_input.input(), layer_settings(settings, sources, k), layer.build.elements, emitted,
+                            layer, progress);
+        add_layer(layered.total, layer, k == 0);
+        layered.layer_emission.push_back(layer.build.elements.emission);
+        add(emission, layer.build.elements.emission);
+        layer.gather_statistics.reset();
+        if (k == 0) layered.total.build.elements = std::move(layer.build.elements);
+        layer.build = BuildResult();
+    }
+    const HierarchyResult& refinement = refined.refinement();
+    layered.total.build.skipped = refinement.build.skipped;
+    layered.total.build.elements.emission = std::move(emission);
+    layered.total.seconds_elements = refinement.seconds_elements;
+    layered.total.seconds_form_factors = refinement.seconds_links;
+    layered.total.seconds_solve += refinement.seconds_solve;
+    return layered;
 }
 
 }  // namespace
@@ -163,6 +207,7 @@ std::size_t layer_bytes_bound(std::size_t layers, std::size_t elements, std::siz
 LayeredBake bake_layers(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources,
                         const ProgressFn& progress) {
     check(input, settings, sources);
+    if (settings.hierarchical.enabled) return hierarchical_layers(input, settings, sources, progress);
     detail::UniformTransport transport = detail::uniform_transport(input, settings, progress);
     LayeredBake layered;
     layered.total.seconds_elements = transport.seconds_elements;

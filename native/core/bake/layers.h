@@ -12,6 +12,11 @@
 /// their shadow rays, which elements are small emitters, the emitters the final gather aims at)
 /// is made from the layer's own sources, so a layer is bit for bit the bake of the same scene with
 /// only that group's sources. The total is the sum of the layers.
+///
+/// The hierarchical bake refines its links and leaves once, for all sources (RefinedHierarchy);
+/// each layer then solves the links from its own sources and gathers the same leaves' corners with
+/// them, so its total is the hierarchical bake's light, and a layer the light its group gives over
+/// links refined for the whole scene.
 #pragma once
 
 #include "bake/bake.h"
@@ -46,8 +51,8 @@ struct LayeredBake {
 /// radiance and emission, in double precision.
 std::size_t layer_bytes_bound(std::size_t layers, std::size_t elements, std::size_t corners);
 
-/// Bakes each layer of `sources` over one uniform transport (see the top of this file). InputError
-/// for the hierarchical method or media (the uniform methods only), or layer indices out of range.
+/// Bakes each layer of `sources` over one transport (see the top of this file). InputError for
+/// media, the hierarchical method without the final gather, or layer indices out of range.
 /// Progress phases as bake()'s, once for the transport and once per layer for the rest.
 LayeredBake bake_layers(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources,
                         const ProgressFn& progress = {});

@@ -23,6 +23,10 @@ BuildResult media_elements(const SceneInput& input, const BakeSettings& settings
 std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>& radiance,
                                 const std::vector<Rgb>& emitted);
 
+/// The hierarchy's result in bake()'s shape: the leaves are the elements (the corners' colours as
+/// the hierarchy made them, unless the output pass makes them).
+BakeResult as_bake_result(HierarchyResult&& hierarchy);
+
 /// The hierarchy's settings from the bake's (bake.h's HierarchicalSettings says which it takes).
 HierarchySettings hierarchy_settings(const BakeSettings& settings);
 

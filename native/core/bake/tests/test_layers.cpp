@@ -173,7 +173,30 @@ TEST(Layers, LampsAndSkyLayersAreBitForBitTheirBakesAlone) {
     }
 }
 
-TEST(Layers, RefusesTheHierarchyAndLayersOutOfRange) {
+TEST(Layers, OverOneRefinedHierarchy) {
+    // The links and leaves are refined once, for all sources: the layers' total is the hierarchical
+    // bake's light on the same leaves, to the solve's tolerance.
+    const test::SceneArrays scene = lit_floor(Rgb(8.0));
+    BakeSettings settings = all_sources(false);
+    settings.hierarchical.enabled = true;
+    settings.hierarchical.refine_tolerance = 0.05;
+    const LayeredBake layered = bake_layers(scene.input(), settings, three_groups(scene.material.size()));
+    const BakeResult ordinary = bake(scene.input(), settings);
+    ASSERT_EQ(layered.total.build.elements.size(), ordinary.build.elements.size());
+    EXPECT_EQ(layered.total.build.elements.vertices, ordinary.build.elements.vertices);
+    std::vector<Rgb> sum(layered.total.colors.input_corner.size(), Rgb(0.0));
+    for (const BakeResult& layer : layered.layers) {
+        ASSERT_TRUE(layer.solve.converged);
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += layer.colors.input_corner[i];
+    }
+    EXPECT_LT(worst_difference(sum, layered.total.colors.input_corner), 1e-12);
+    EXPECT_LT(worst_difference(layered.total.solve.radiance, ordinary.solve.radiance), 1e-6);
+    EXPECT_LT(worst_difference(layered.total.build.elements.emission, ordinary.build.elements.emission), 1e-6);
+    ASSERT_TRUE(layered.total.hierarchy.has_value());
+    EXPECT_EQ(layered.total.hierarchy->leaves, ordinary.hierarchy->leaves);
+}
+
+TEST(Layers, RefusesMediaTheUngatheredHierarchyAndLayersOutOfRange) {
     const test::SceneArrays scene = lit_floor(Rgb(8.0));
     BakeSettings settings = all_sources();
     LayerSources sources = three_groups(scene.material.size());
@@ -183,6 +206,7 @@ TEST(Layers, RefusesTheHierarchyAndLayersOutOfRange) {
     sources.point.clear();
     EXPECT_THROW(bake_layers(scene.input(), settings, sources), InputError);
     settings.hierarchical.enabled = true;
+    settings.final_gather.enabled = false;
     EXPECT_THROW(bake_layers(scene.input(), settings, three_groups(scene.material.size())), InputError);
 }
 
