@@ -6,7 +6,7 @@ process's peak resident memory (run one group count a process to compare those).
 
     BLENDER_USER_SCRIPTS=$(mktemp -d) BLENDER_USER_CONFIG=$(mktemp -d) \\
       blender -b --factory-startup --python-exit-code 1 --python lab/light_groups/measure.py -- \\
-        --addon-zip build/bake_radiosity.zip [--groups 0,1,2,8] [--quality MEDIUM]
+        --addon-zip build/bake_radiosity.zip [--groups 0,1,2,8] [--quality MEDIUM] [--method HIERARCHICAL]
 """
 
 import argparse
@@ -58,20 +58,22 @@ def main():
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--groups", default="0,1,2,8", help="light groups (0: the ordinary bake, no layers)")
     parser.add_argument("--quality", default="MEDIUM")
+    parser.add_argument("--method", help="a method instead of the preset's (Custom quality, its defaults)")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
     box = lit_box()
     for groups in [int(g) for g in args.groups.split(",")]:
         group_sources(box, groups)
         wall, cpu = time.perf_counter(), time.process_time()
-        summary = addon.bake(bpy.context.scene, quality=args.quality, light_group_layers=groups > 0)
+        chosen = {"method": args.method} if args.method else {"quality": args.quality}
+        summary = addon.bake(bpy.context.scene, light_group_layers=groups > 0, **chosen)
         phases = {k: round(v, 1) for k, v in summary["seconds"].items() if v >= 0.05}
         layers = summary["light_layers"]
         memory = "%.1f MB" % (layers["bytes"] / 2 ** 20) if layers else "none"
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-        print("%d groups: %d elements, %.1f wall s, %.1f CPU s, load %.1f, layers' memory %s, peak resident %.0f MB; %s"
-              % (groups, summary["elements"], time.perf_counter() - wall, time.process_time() - cpu,
-                 os.getloadavg()[0], memory, peak, phases), flush=True)
+        print("%d groups, %s: %d elements, %.1f wall s, %.1f CPU s, load %.1f, layers' memory %s, peak resident "
+              "%.0f MB; %s" % (groups, summary["method"], summary["elements"], time.perf_counter() - wall,
+                               time.process_time() - cpu, os.getloadavg()[0], memory, peak, phases), flush=True)
 
 
 main()
