@@ -39,6 +39,8 @@ def parse(argv):
     parser.add_argument("--target", choices=("ORIGINAL", "COPIES"))
     parser.add_argument("--write-light-only", action="store_true", default=None,
                         help="also write the light without the surface colour into '<attribute> Light'")
+    parser.add_argument("--light-group-layers", action="store_true", default=None,
+                        help="also write one attribute per light group, '<attribute> <group>', that sum to it")
     parser.add_argument("--no-final-gather", dest="final_gather", action="store_false", default=None,
                         help="corners take the interpolated solution instead of gathering their light")
     parser.add_argument("--separate-linked-duplicates", action="store_true", default=None,

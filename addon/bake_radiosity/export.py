@@ -29,6 +29,11 @@ def export_scene(depsgraph, view_layer):
     return builder.finish()
 
 
+def light_group(obj):
+    """The light group an object or lamp names (Blender 3.2 and later), "" for none."""
+    return getattr(obj.original, "lightgroup", "")
+
+
 def is_bake_output(original):
     """Whether an (original) object is one a bake made."""
     return bool(original.get(COPY_TAG) or original.get(MEDIUM_TAG))
@@ -46,6 +51,9 @@ class _Builder:
         self.lamp_problems = {}         # problem -> [lamp name or (name, detail)], said once each
         self.vertex_total = self.polygon_total = self.corner_total = 0
         self.textures = _Textures()
+        self.light_groups = {"": 0}     # light group name -> index
+        self.polygon_groups = []        # per exported mesh or area lamp: (polygons, its group's index)
+        self.lamp_groups = []           # per exported point, spot or sun lamp: its light group
 
     def material_id(self, material):
         key = material.name if material is not None else None
@@ -104,6 +112,7 @@ class _Builder:
         self.polygon_material.append(slot_ids[material_index])
         self.textures.add_part(original.name, mesh, order, loop_total, material_index,
                                [self.surfaces[i] for i in slot_ids])
+        self._note_light_group(obj, len(loop_start))
         self.vertex_total += len(world)
         self.polygon_total += len(loop_start)
         self.corner_total += len(loop_vertex)
@@ -126,6 +135,7 @@ class _Builder:
             self.corners.append(quads.ravel().astype(np.int32) + self.vertex_total)
             self.polygon_material.append(np.full(len(quads), len(self.surfaces) - 1, dtype=np.int32))
             self.textures.add_plain(len(quads), quads.size)
+            self._note_light_group(obj, len(quads))
             self.vertex_total += len(vertices)
             self.polygon_total += len(quads)
             self.corner_total += quads.size
@@ -133,6 +143,11 @@ class _Builder:
         entry, problems = lights.point_like(obj, matrix_world, strength)
         self._note_lamp_problems(problems)
         self.lights.append(entry)
+        self.lamp_groups.append(light_group(obj))
+
+    def _note_light_group(self, obj, polygons):
+        group = self.light_groups.setdefault(light_group(obj), len(self.light_groups))
+        self.polygon_groups.append(np.full(polygons, group, dtype=np.int32))
 
     def _note_lamp_problems(self, problems):
         for problem, item in problems:
@@ -156,6 +171,9 @@ class _Builder:
             material=material.astype(np.int32),
             front_only=np.isin(material, self.lamp_ids).astype(np.uint8),
             lights=self.lights, parts=self.parts, warnings=self.warnings, textures=self.textures.keyword(),
+            light_group_names=list(self.light_groups),
+            polygon_light_group=np.concatenate(self.polygon_groups) if self.polygon_groups else np.zeros(0, np.int32),
+            lamp_light_groups=self.lamp_groups,
         )
 
     def _mark_shared_meshes(self):

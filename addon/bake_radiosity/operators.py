@@ -7,7 +7,7 @@ import threading
 
 import bpy
 
-from . import overlay, pipeline, preview, wiring
+from . import light_mix, overlay, pipeline, preview, wiring
 from .engine import native
 from .engine.progress_view import ProgressView
 
@@ -212,7 +212,28 @@ class RADIOSITY_OT_unwire(bpy.types.Operator):
         return {"FINISHED"}
 
 
-CLASSES = (RADIOSITY_OT_bake, RADIOSITY_OT_preview, RADIOSITY_OT_wire, RADIOSITY_OT_unwire)
+class RADIOSITY_OT_apply_light_mix(bpy.types.Operator):
+    bl_idname = "radiosity.apply_light_mix"
+    bl_label = "Apply Light Mix"
+    bl_description = ("Write the light group layers' current mix (their strengths and tints) into the baked "
+                      "attribute, as if baked so; one undo step")
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return len(context.scene.radiosity.light_layers) > 0
+
+    def execute(self, context):
+        count = light_mix.apply_mix(context.scene)
+        if not count:
+            self.report({"WARNING"}, "No mesh in this scene holds the light group layers of the last bake")
+            return {"CANCELLED"}
+        self.report({"INFO"}, "Wrote the light mix into %d mesh(es)" % count)
+        return {"FINISHED"}
+
+
+CLASSES = (RADIOSITY_OT_bake, RADIOSITY_OT_preview, RADIOSITY_OT_wire, RADIOSITY_OT_unwire,
+           RADIOSITY_OT_apply_light_mix)
 
 
 def register():

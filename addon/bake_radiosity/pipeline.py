@@ -7,8 +7,8 @@ import time
 
 import bpy
 
-from . import export, facing, linked, media_export, media_writeback, outliers, world, writeback
-from .engine import auto_settings, energy, error_estimate, faces, media_energy, solve
+from . import export, facing, light_mix, linked, media_export, media_writeback, outliers, world, writeback
+from .engine import auto_settings, energy, error_estimate, faces, light_groups, media_energy, solve
 from .engine import summary as summary_lines
 from .engine.errors import BakeError
 
@@ -16,7 +16,7 @@ SETTING_NAMES = ("quality", "method", "hemicube_resolution", "element_size", "to
                  "max_iterations",
                  "memory_budget", "hard_edge_angle", "attribute_name", "target", "separate_linked_duplicates",
                  "final_gather", "write_light_only", "make_linked_local",
-                 "zone_size", "media_folder")
+                 "zone_size", "media_folder", "light_group_layers")
 # Naming one of these for a bake (and not the quality) asks for exactly that value: Custom quality.
 CUSTOM_SETTING_NAMES = ("method", "hemicube_resolution", "element_size", "tolerance", "refine_tolerance")
 QUALITIES = ("DRAFT", "MEDIUM", "HIGH", "CUSTOM")
@@ -54,7 +54,27 @@ class BakeJob:
         self.settings = settings_of(scene, overrides)
         with solve.core_errors_as_bake_errors():
             self._prepare(scene, depsgraph, view_layer)
+            self.layers = self._light_group_layers(scene, view_layer)
         self.result = None
+
+    def _light_group_layers(self, scene, view_layer):
+        """The light groups' Layers this bake writes beside the usual attribute, or None (the option off,
+        or a bake that cannot take them: then a warning says why)."""
+        if not self.settings["light_group_layers"]:
+            return None
+        e, c = self.exported, self.choice
+        world_group = getattr(scene.world, "lightgroup", "") if self.world_baked() else None
+        layers = light_groups.layers_of(e.light_group_names, e.polygon_light_group, e.emission, e.lamp_light_groups,
+                                        world_group, [g.name for g in getattr(view_layer, "lightgroups", ())])
+        stored = c.method != "hierarchical" and c.matrix_bytes_bound <= c.budget_bytes
+        refusal = light_groups.refusal(layers, c.method, bool(self.media.media), c.gather_rays > 0,
+                                       c.matrix_bytes_bound if stored else 0, c.elements, len(e.corner_vertices),
+                                       c.budget_bytes)
+        if refusal:
+            self.warnings.append(refusal)
+            return None
+        self.layer_bytes = light_groups.layer_bytes(len(layers.names), c.elements, len(e.corner_vertices))
+        return layers
 
     def _prepare(self, scene, depsgraph, view_layer):
         start = time.perf_counter()
@@ -105,7 +125,12 @@ class BakeJob:
 
     def solve(self, progress=None):
         """Runs the core. Touches no bpy data, so it may run in a worker thread."""
-        self.result = solve.bake(self.exported, self.core_settings(), progress)
+        keywords = self.core_settings()
+        if self.layers is not None:
+            keywords["layers"] = self.layers.keyword()
+            if self.method == "hierarchical":  # its nodes and links take what the layers leave of the budget
+                keywords["max_bytes"] = self.choice.budget_bytes - self.layer_bytes
+        self.result = solve.bake(self.exported, keywords, progress)
         self._fill_skipped_corners()
         self.warnings += self._skipped_warnings()
         self.warnings += facing.turned_away_warnings(self.exported, self.result["corner_radiance"])
@@ -142,7 +167,9 @@ class BakeJob:
         made_local = linked.make_local(self.exported, self.linked)
         if made_local:
             self.warnings.append(made_local)
-        self.warnings += writeback.write(scene, self.exported, self.result, self.settings)
+        layer_names = self.layers.names if self.layers is not None else []
+        self.warnings += writeback.write(scene, self.exported, self.result, self.settings, layer_names)
+        light_mix.remember_layers(scene, self.settings["attribute_name"], layer_names)
         if self.media.media:
             media_writeback.load(scene, self.media, media_files)
         seconds_writeback = time.perf_counter() - start
@@ -164,7 +191,7 @@ class BakeJob:
             "zones": r.get("zones", 0), "zones_before_merge": r.get("zones_before_merge", 0),
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
-            "world": self.world_summary(), "lit_by": self.lit_by(),
+            "world": self.world_summary(), "lit_by": self.lit_by(), "light_layers": self.layers_summary(),
             "warnings": list(self.warnings),
             # Every phase, so that their sum is the whole bake's time.
             "seconds": {"export": self.seconds_export, "world_map": self.world.seconds if self.world else 0.0,
@@ -173,6 +200,14 @@ class BakeJob:
         scene.radiosity.last_report = summary_lines.report_line(summary)
         scene.radiosity.last_accuracy = summary_lines.accuracy_line(summary)
         return summary
+
+    def layers_summary(self):
+        """The light group layers written: their groups and memory against the budget; None without."""
+        if self.layers is None:
+            return None
+        return {"groups": list(self.layers.names), "bytes": self.layer_bytes,
+                "attributes": [light_groups.attribute_name(self.settings["attribute_name"], g)
+                               for g in self.layers.names]}
 
     def world_baked(self):
         return self.world is not None and not self.media.media
@@ -200,9 +235,10 @@ class BakeJob:
     def _fill_skipped_corners(self):
         """Skipped faces carry no light; their corners show that of the faces around them."""
         skipped = [polygon for polygon, _ in self.result["skipped"]]
-        for key in ("corner_radiance", "corner_light"):
-            if key in self.result:
-                self.result[key] = faces.fill_skipped_corners(self.result[key], self.exported, skipped)
+        for result in [self.result] + self.result.get("layers", []):
+            for key in ("corner_radiance", "corner_light"):
+                if key in result:
+                    result[key] = faces.fill_skipped_corners(result[key], self.exported, skipped)
 
     def _skipped_warnings(self):
         skipped = [(polygon, reason) for polygon, reason in self.result["skipped"]
@@ -250,7 +286,8 @@ def bake(scene, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
     resolution_reason, near_field, tolerance, matrix memory), the World's light baked (world: name,
-    rendered, width, height, description; None when none) and what lights the bake (lit_by),
+    rendered, width, height, description; None when none) and what lights the bake (lit_by), the
+    light group layers written (light_layers: groups, bytes, attributes; None without),
     energy (watts emitted, absorbed, lost, created), error_estimate (the typical relative error per
     corner, its relation and source, its parts from the gather: sampling, the solution's bias and the
     field's light; the solve's bound), warnings, and seconds per phase (export, form_factors, solve,

@@ -3,7 +3,8 @@
 import math
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, StringProperty)
 
 
 def _switch_to_custom(settings, _context):
@@ -11,6 +12,23 @@ def _switch_to_custom(settings, _context):
     # means the artist wants that value, which a preset would override.
     if settings.quality != "CUSTOM":
         settings.quality = "CUSTOM"
+
+
+def _update_light_mix(_layer, context):
+    from . import light_mix  # light_mix imports this module
+    light_mix.update_mix(context.scene)
+
+
+class RadiosityLightLayer(bpy.types.PropertyGroup):
+    """One light group's baked layer and how the live mix weighs it."""
+    group: StringProperty(name="Light Group", description="The light group ('' for lights without one)")
+    attribute: StringProperty(name="Attribute", description="The colour attribute holding the layer")
+    strength: FloatProperty(
+        name="Strength", description="The layer's light times this in the mix that Wire Baked Light shows",
+        default=1.0, min=0.0, soft_max=10.0, update=_update_light_mix)
+    tint: FloatVectorProperty(
+        name="Tint", description="The layer's light times this colour in the mix", subtype="COLOR", size=3,
+        default=(1.0, 1.0, 1.0), min=0.0, soft_max=1.0, update=_update_light_mix)
 
 
 class RadiositySettings(bpy.types.PropertyGroup):
@@ -113,6 +131,20 @@ class RadiositySettings(bpy.types.PropertyGroup):
                     "multiplied by a texture in the shader, it lights the texture at full resolution",
         default=False,
     )
+    light_group_layers: BoolProperty(
+        name="Light Group Layers",
+        description="Also write one colour attribute per light group that lights the scene ('<Attribute> <group>', "
+                    "'<Attribute> (no group)' for lamps, emitters and the World without one), each the light of "
+                    "that group alone with every bounce; they sum to the usual attribute. Wire Baked Light then "
+                    "mixes them with the strengths and tints below, live (within the Memory Budget; not with fog or "
+                    "smoke; hierarchically with the Final Gather)",
+        default=False,
+    )
+    light_layers: CollectionProperty(type=RadiosityLightLayer, name="Light Layers",
+                                     description="The light group layers of the last bake and their mix")
+    light_layers_attribute: StringProperty(
+        name="Layered Attribute", description="The attribute of the last bake with light group layers, which "
+                                              "Apply Light Mix writes", default="")
     final_gather: BoolProperty(
         name="Final Gather",
         description="Light each corner of the meshes where it is: direct light from every lamp and emitter at the "
@@ -173,7 +205,7 @@ class RadiositySettings(bpy.types.PropertyGroup):
     )
 
 
-CLASSES = (RadiositySettings,)
+CLASSES = (RadiosityLightLayer, RadiositySettings)
 
 
 def register():

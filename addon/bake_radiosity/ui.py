@@ -77,9 +77,25 @@ def draw_panel(layout, context):
         column.prop(settings, "make_linked_local")
     column.prop(settings, "attribute_name")
     column.prop(settings, "write_light_only")
+    column.prop(settings, "light_group_layers")
+    draw_light_mix(layout, settings)
     column.separator()
     column.prop(settings, "zone_size")
     column.prop(settings, "media_folder")
+
+
+def draw_light_mix(layout, settings):
+    """Each light group layer of the last bake with its strength and tint, and Apply Light Mix."""
+    if not len(settings.light_layers):
+        return
+    box = layout.box().column(align=True)
+    box.label(text="Light Mix (live where wired)")
+    for layer in settings.light_layers:
+        row = box.row(align=True)
+        row.label(text=layer.group or "(no group)")
+        row.prop(layer, "strength", text="")
+        row.prop(layer, "tint", text="")
+    box.operator("radiosity.apply_light_mix", icon="CHECKMARK")
 
 
 class RADIOSITY_PT_render(bpy.types.Panel):

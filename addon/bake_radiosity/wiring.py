@@ -7,12 +7,15 @@ material's diffuse colour as Cycles' Diffuse bake has it: whatever feeds the Bas
 Principled BSDF or the Color of a Diffuse BSDF (a texture at full resolution included), times the
 share of it the BSDF reflects diffusely (the Emission's Strength; materials.diffuse_share). With
 the full radiance, the emission is the attribute itself. The nodes added carry a name prefix, and
-the link they replaced is kept on the material, so unwiring restores the node tree as it was."""
+the link they replaced is kept on the material, so unwiring restores the node tree as it was.
+With light group layers (light_mix.py) on every object using the material, the emission is their
+live mix, the node group "Radiosity Light Mix", instead of the attribute."""
 
 import json
 
 import bpy
 
+from . import light_mix
 from .materials import diffuse_share
 from .writeback import light_attribute_name
 
@@ -37,8 +40,10 @@ def wire(scene):
     for material, objects in users.items():
         if STATE_KEY in material:
             continue  # wired already
-        light_only = all(o.data.color_attributes.get(light_name) is not None for o in objects)
-        problem = _wire_material(material, light_name if light_only else name, light_only)
+        mixed = all(light_mix.has_layers(scene, o.data) for o in objects)
+        light_only = not mixed and all(o.data.color_attributes.get(light_name) is not None for o in objects)
+        source = light_mix.mix_group(scene) if mixed else (light_name if light_only else name)
+        problem = _wire_material(material, source, light_only)
         if problem:
             messages.append("Material '%s' not wired: %s" % (material.name, problem))
         else:
@@ -79,7 +84,19 @@ def _colour_socket(tree, output):
     return None
 
 
-def _wire_material(material, attribute_name, light_only):
+def _light_node(nodes, source):
+    """The node giving the light: a Color Attribute reading the attribute named `source`, or a
+    group node of the node group `source` (the light group layers' mix)."""
+    if isinstance(source, str):
+        node = nodes.new("ShaderNodeVertexColor")
+        node.layer_name = source
+        return node, source
+    node = nodes.new("ShaderNodeGroup")
+    node.node_tree = source
+    return node, source.name
+
+
+def _wire_material(material, source, light_only):
     if material.node_tree is None:
         return "it has no node tree"
     tree = material.node_tree
@@ -97,8 +114,7 @@ def _wire_material(material, attribute_name, light_only):
 
     nodes, links = tree.nodes, tree.links
     x, y = output.location
-    attribute = nodes.new("ShaderNodeVertexColor")
-    attribute.layer_name = attribute_name
+    attribute, attribute_name = _light_node(nodes, source)
     attribute.location = (x - 600, y - 300)
     emission = nodes.new("ShaderNodeEmission")
     emission.inputs["Strength"].default_value = 1.0
@@ -110,7 +126,7 @@ def _wire_material(material, attribute_name, light_only):
         product.operation = "MULTIPLY"
         product.location = (x - 400, y - 300)
         added.append(product)
-        links.new(attribute.outputs["Color"], product.inputs[0])
+        links.new(attribute.outputs[0], product.inputs[0])
         if colour.is_linked:
             links.new(colour.links[0].from_socket, product.inputs[1])
         else:
@@ -118,7 +134,7 @@ def _wire_material(material, attribute_name, light_only):
         links.new(product.outputs[0], emission.inputs["Color"])
         emission.inputs["Strength"].default_value = diffuse_share(colour.node)
     else:
-        links.new(attribute.outputs["Color"], emission.inputs["Color"])
+        links.new(attribute.outputs[0], emission.inputs["Color"])
     links.new(emission.outputs["Emission"], surface)
     for node in added:
         node.name = NODE_PREFIX + node.name

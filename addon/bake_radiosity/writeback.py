@@ -4,6 +4,7 @@
 import bpy
 import numpy as np
 
+from .engine.light_groups import attribute_name as layer_attribute_name
 from .export import COPY_TAG
 
 COLLECTION_NAME = "Radiosity Bake"
@@ -17,15 +18,27 @@ def light_attribute_name(attribute_name):
     return attribute_name + LIGHT_SUFFIX
 
 
-def write(scene, exported, result, settings):
-    """Writes `result` as `settings` ask and returns warnings about what could not be written."""
+def write(scene, exported, result, settings, layer_groups=()):
+    """Writes `result` as `settings` ask, with the light group layers of `layer_groups` (the groups of
+    result["layers"], in order) beside it, and returns warnings about what could not be written."""
     name = settings["attribute_name"]
     outputs = [(name, "corner_radiance", "element_corner_radiance")]
     if settings.get("write_light_only"):
         outputs.append((light_attribute_name(name), "corner_light", "element_corner_light"))
+    for k, group in enumerate(layer_groups):
+        outputs.append((layer_attribute_name(name, group), ("layers", k, "corner_radiance"),
+                        ("layers", k, "element_corner_radiance")))
     if settings["target"] == "ORIGINAL":
         return _write_original(exported, result, outputs, settings["separate_linked_duplicates"])
     return _write_copies(scene, exported, result, outputs)
+
+
+def _values(result, key):
+    """result[key], or for a layer's key ("layers", k, name) result["layers"][k][name]."""
+    if isinstance(key, tuple):
+        _, k, name = key
+        return result["layers"][k][name]
+    return result[key]
 
 
 def set_color_attribute(mesh, name, rgb):
@@ -68,7 +81,7 @@ def _write_original(exported, result, outputs, separate_linked_duplicates):
             continue
         for name, key, _ in reversed(outputs):  # the first written last: it stays the active colour
             rgb = np.empty((len(mesh.loops), 3), dtype=np.float32)
-            rgb[part.corner_order] = result[key][part.corner_start:part.corner_stop]
+            rgb[part.corner_order] = _values(result, key)[part.corner_start:part.corner_stop]
             set_color_attribute(mesh, name, rgb)
         written.add(part.object_name)
     warnings = []
@@ -154,5 +167,5 @@ def _element_mesh(mesh_name, outputs, result, elements, part):
     for material_name in part.material_names:
         mesh.materials.append(bpy.data.materials.get(material_name) if material_name else None)
     for name, _, key in reversed(outputs):  # the first written last: it stays the active colour
-        set_color_attribute(mesh, name, result[key][elements][used])
+        set_color_attribute(mesh, name, _values(result, key)[elements][used])
     return mesh

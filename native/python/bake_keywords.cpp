@@ -103,7 +103,8 @@ void read_media(KeywordReader& keywords, MediaSettings& media) {
     if (media.grid_subdivision < 1) throw InputError("grid_subdivision must be at least 1");
 }
 
-/// Element corner colours as (E, 4, 3); the 4th corner of a triangle repeats zero.
+}  // namespace
+
 py::array_t<float> element_corner_array(const std::vector<Rgb>& element_corner) {
     const auto count = static_cast<py::ssize_t>(element_corner.size() / 4);
     py::array_t<float> out({count, py::ssize_t{4}, py::ssize_t{3}});
@@ -112,6 +113,8 @@ py::array_t<float> element_corner_array(const std::vector<Rgb>& element_corner) 
         for (int c = 0; c < 3; ++c) o[3 * k + c] = static_cast<float>(element_corner[k][c]);
     return out;
 }
+
+namespace {
 
 ProgressMonitor* monitor_of(const py::object& progress) {
     return py::isinstance<ProgressMonitor>(progress) ? progress.cast<ProgressMonitor*>() : nullptr;

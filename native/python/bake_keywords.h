@@ -3,6 +3,7 @@
 /// BakeSettings, the progress reporter, and the result as a dict.
 #pragma once
 
+#include "arrays.h"
 #include "progress.h"
 #include "progress_monitor.h"
 
@@ -28,6 +29,9 @@ private:
     ProgressBridge bridge_;
     ProgressFn function_;
 };
+
+/// Element corner colours as (E, 4, 3); the 4th corner of a triangle repeats zero.
+py::array_t<float> element_corner_array(const std::vector<Rgb>& element_corner);
 
 /// bake()'s result as the dict `_core.bake` returns: elements, corner colours, solve statistics,
 /// seconds per phase, and the hierarchy's counts and the media's zones and grids where they apply.

@@ -4,6 +4,7 @@
 #include "arrays.h"
 #include "bake_keywords.h"
 #include "bindings.h"
+#include "layer_arrays.h"
 #include "scene_arrays.h"
 #include "texture_arrays.h"
 
@@ -44,17 +45,29 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
                      const py::object& progress, const py::kwargs& keywords) {
     const TexturedScene scene(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only,
                               textures);
-    const BakeSettings settings = bake_settings(keywords);
+    py::kwargs settings_keywords;
+    for (const auto& item : keywords)
+        if (py::str(item.first).cast<std::string>() != "layers") settings_keywords[item.first] = item.second;
+    const BakeSettings settings = bake_settings(settings_keywords);
+    std::optional<LayerSources> layers;
+    if (keywords.contains("layers") && !keywords["layers"].is_none())
+        layers = parse_layers(
+            keywords["layers"].cast<py::dict>(), scene.input.face_count,
+            settings_keywords.contains("lights") ? settings_keywords["lights"].cast<py::list>() : py::list());
     ProgressReporter reporter(progress);
     BakeResult result;
+    LayeredBake layered;
     try {
         py::gil_scoped_release release;
-        result = bake(scene.input, settings, reporter.function());
+        if (layers)
+            layered = bake_layers(scene.input, settings, *layers, reporter.function());
+        else
+            result = bake(scene.input, settings, reporter.function());
     } catch (const Cancelled&) {
         reporter.rethrow_if_failed();
         throw;
     }
-    return bake_result(result);
+    return layers ? layered_result(layered) : bake_result(result);
 }
 
 py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_offsets,
@@ -121,8 +134,12 @@ void bind_bake(py::module_& m) {
           "max_element_aspect, max_elements, hemicube_rotations, direct_emitter_area; the final gather: "
           "final_gather, gather_rays, gather_shadow_rays; the hierarchy: refine_tolerance, max_bytes; media: media "
           "([{origin, voxel_size, extinction, albedo, emission (nz, ny, nx, 3)}]), zone_resolution, "
-          "grid_subdivision, merge_uniform_zones. The dict: the elements (as plan() gives them; the hierarchy's "
-          "leaves), corner_radiance, element_corner_radiance, element_radiance, element_emission, "
+          "grid_subdivision, merge_uniform_zones; light group layers: layers ({count, polygon: a layer per polygon, "
+          "lamp: a layer per lights entry, world: its layer}, uniform methods only; the dict then adds layers, per "
+          "layer corner_radiance, element_corner_radiance, corner_light, element_corner_light, element_radiance, "
+          "element_emission, iterations, residual, converged, seconds, and the rest is their sum). The dict: the "
+          "elements (as plan() gives them; the hierarchy's leaves), corner_radiance, element_corner_radiance, "
+          "element_radiance, element_emission, "
           "element_reflectance, corner_light and element_corner_light, iterations, shots, residual, "
           "residual_history, converged, matrix_stored, matrix_nonzeros, matrix_bytes, seconds per phase, "
           "final_gather (points, buried and what the error estimate reads: solution_light, indirect, variance, "
@@ -144,6 +161,10 @@ void bind_bake(py::module_& m) {
     m.def("matrix_bytes_bound", &matrix_bytes_bound,
           "Upper bound of the stored form-factor matrix's bytes for n elements at hemi-cube resolution N.",
           "element_count"_a, "resolution"_a);
+    m.def("layer_bytes_bound", &layer_bytes_bound,
+          "Upper bound of the bytes `layers` light group layers add to a bake of `elements` elements and `corners` "
+          "input corners (the core's; the add-on checks it against the memory budget).",
+          "layers"_a, "elements"_a, "corners"_a);
     m.def("recommended_resolution", &recommended_resolution_arrays,
           "Even hemi-cube resolution in [32, 1024] at which the 10th percentile of element_area, seen head-on "
           "from half the diagonal of element_vertices' bounding box, covers `cells` cells: 2 d sqrt(cells / A).",

@@ -42,6 +42,11 @@ class ExportedScene:
     # The `textures` keyword of _core.bake (images, corner_uv, per-face texture and scale for
     # reflectance and emission); None when no face is textured.
     textures: dict = None
+    # Light groups (Blender 3.2 and later): polygon f's is light_group_names[polygon_light_group[f]],
+    # lamp l's lamp_light_groups[l]; "" for none.
+    light_group_names: list = field(default_factory=lambda: [""])
+    polygon_light_group: np.ndarray = None
+    lamp_light_groups: list = field(default_factory=list)
 
     @property
     def polygon_count(self):

@@ -25,9 +25,19 @@ def report_line(summary):
     else:
         gather = ""
     lit = ", lit by %s" % summary["lit_by"] if summary.get("world") else ""
-    return "%d elements%s, %s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
-        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, summary["iterations"],
-        summary["residual"], state, seconds)
+    return "%d elements%s, %s%s%s%s, %d iterations, residual %.2g (%s), %.1f s" % (
+        summary["elements"], zones, METHOD_LABELS[summary["method"]], gather, lit, layers_text(summary),
+        summary["iterations"], summary["residual"], state, seconds)
+
+
+def layers_text(summary):
+    """The light group layers written and their memory against the budget ("" without)."""
+    layers = summary.get("light_layers")
+    if not layers:
+        return ""
+    groups = ", ".join(g or "no group" for g in layers["groups"])
+    return ", %d light group layers (%s; %.0f MB of the %.0f MB memory budget)" % (
+        len(layers["groups"]), groups, layers["bytes"] / (1 << 20), summary["memory_budget_bytes"] / (1 << 20))
 
 
 def accuracy_line(summary):

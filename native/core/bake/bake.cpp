@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 namespace radiosity {
 namespace {
@@ -40,76 +41,115 @@ bool stores_matrix(std::size_t element_count, const BakeSettings& settings) {
     return matrix_bytes_bound(element_count, settings.resolution) <= settings.matrix_budget_bytes / copies;
 }
 
-BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
-    BakeResult result;
-
+UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+    UniformTransport transport;
     auto start = Clock::now();
-    result.build = uniform_elements(input, settings, progress);
-    Elements& elements = result.build.elements;
-    result.seconds_elements = seconds_since(start);
-
-    // The polygons' own emission, before the lamps' and the world's first reflection join it (the final gather
-    // counts emission as direct light and everything else the solve found as indirect).
-    const std::vector<Rgb> emitted = elements.emission;
+    transport.build = uniform_elements(input, settings, progress);
+    transport.emitted = transport.build.elements.emission;
+    transport.seconds_elements = seconds_since(start);
+    transport.matrix_stored = stores_matrix(transport.build.elements.size(), settings);
+    if (!transport.matrix_stored) return transport;
     start = Clock::now();
+    RowSettings rows = row_settings(settings);
+    transport.form_factors.emplace(compute_form_factors(transport.build.elements, rows, progress));
+    transport.seconds_form_factors = seconds_since(start);
+    return transport;
+}
+
+RowSettings row_settings(const BakeSettings& settings) {
+    RowSettings rows;
+    rows.resolution = settings.resolution;
+    rows.rotations = settings.hemicube_rotations;
+    rows.near_field = settings.near_field;
+    return rows;
+}
+
+namespace {
+
+/// The lamps' and the world's first reflection, rho E / pi, added to the elements' emission.
+void add_first_reflection(Elements& elements, const BakeSettings& settings, BakeResult& result,
+                          const ProgressFn& progress) {
+    auto start = Clock::now();
     if (!settings.lights.empty()) {
         const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, progress);
         for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
     }
-    result.seconds_lights = seconds_since(start);
+    result.seconds_lights += seconds_since(start);
     start = Clock::now();
     if (!settings.world.empty()) {
         const std::vector<Rgb> E = world_irradiance(elements, settings.world, progress);
         for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
     }
-    result.seconds_world = seconds_since(start);
+    result.seconds_world += seconds_since(start);
+}
 
-    // Small emitters, and lamps, which hemi-cubes do not see, light every element directly; the
-    // solve carries only the light reflected after that, so their own emission leaves it until the
-    // solve is done.
-    std::vector<int32_t> small;
+/// Small emitters, and lamps, which hemi-cubes do not see, light every element directly; the
+/// solve carries only the light reflected after that, so their own emission leaves it until the
+/// solve is done.
+struct SmallEmitters {
+    std::vector<int32_t> elements;
+    std::vector<Rgb> light;  ///< their direct light on every element (empty without any)
+};
+
+SmallEmitters light_from_small_emitters(Elements& elements, const std::vector<Rgb>& emitted,
+                                        const BakeSettings& settings, BakeResult& result, const ProgressFn& progress) {
+    SmallEmitters small;
     for (std::size_t e = 0; e < elements.size(); ++e)
         if ((elements.area[e] < settings.direct_emitter_area || !elements.blocks(e)) && max_channel(emitted[e]) > 0.0)
-            small.push_back(int32_t(e));
-    std::vector<Rgb> small_light;
-    if (!small.empty()) {
-        start = Clock::now();
-        small_light = detail::small_emitter_light(elements, small, emitted, progress);
-        for (std::size_t e = 0; e < elements.size(); ++e)
-            elements.emission[e] += elements.reflectance[e] * small_light[e];
-        for (const int32_t j : small) elements.emission[j] -= emitted[j];
-        result.direct_emitters = small.size();
-        result.seconds_direct_emitters = seconds_since(start);
-    }
+            small.elements.push_back(int32_t(e));
+    if (small.elements.empty()) return small;
+    const auto start = Clock::now();
+    small.light = detail::small_emitter_light(elements, small.elements, emitted, progress);
+    for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * small.light[e];
+    for (const int32_t j : small.elements) elements.emission[j] -= emitted[j];
+    result.direct_emitters += small.elements.size();
+    result.seconds_direct_emitters += seconds_since(start);
+    return small;
+}
 
-    const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
-    result.matrix_stored = stores_matrix(elements.size(), settings);
-    RowSettings rows;
-    rows.resolution = settings.resolution;
-    rows.rotations = settings.hemicube_rotations;
-    rows.near_field = settings.near_field;
-    start = Clock::now();
-    if (result.matrix_stored) {
-        const SparseMatrix F = compute_form_factors(elements, rows, progress);
-        result.matrix_nonzeros = F.nonzeros();
-        result.matrix_bytes = copies * F.bytes();
-        result.seconds_form_factors = seconds_since(start);
-        result.solve = solve(elements, F, settings.solve, progress);
-    } else {
-        HemicubeRows on_demand(elements, rows);
-        result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
-    }
-    result.seconds_solve = result.solve.seconds;
-    // Small emitters shine again; the first reflection of their light stays out of the emission
-    // reported, so that the energy balance counts it as light received (absorbed or reflected).
-    for (const int32_t j : small) {
-        result.solve.radiance[j] += emitted[j];
+/// Small emitters shine again; the first reflection of their light stays out of the emission
+/// reported, so that the energy balance counts it as light received (absorbed or reflected).
+void restore_small_emitters(Elements& elements, const std::vector<Rgb>& emitted, const SmallEmitters& small,
+                            SolveResult& solved) {
+    for (const int32_t j : small.elements) {
+        solved.radiance[j] += emitted[j];
         elements.emission[j] += emitted[j];
     }
-    for (std::size_t e = 0; e < small_light.size(); ++e)
-        elements.emission[e] -= elements.reflectance[e] * small_light[e];
+    for (std::size_t e = 0; e < small.light.size(); ++e)
+        elements.emission[e] -= elements.reflectance[e] * small.light[e];
+}
 
+}  // namespace
+
+void light_of_sources(const SceneInput& input, const BakeSettings& settings, UniformTransport& transport,
+                      const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress) {
+    Elements& elements = transport.build.elements;
+    elements.emission = emitted;
+    add_first_reflection(elements, settings, result, progress);
+    const SmallEmitters small = light_from_small_emitters(elements, emitted, settings, result, progress);
+
+    const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
+    result.matrix_stored = transport.matrix_stored;
+    if (transport.form_factors) {
+        result.matrix_nonzeros = transport.form_factors->nonzeros();
+        result.matrix_bytes = copies * transport.form_factors->bytes();
+        result.solve = solve(elements, *transport.form_factors, settings.solve, progress);
+    } else {
+        HemicubeRows on_demand(elements, row_settings(settings));
+        result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
+    }
+    result.seconds_solve += result.solve.seconds;
+    restore_small_emitters(elements, emitted, small, result.solve);
     output_pass(input, settings, elements, emitted, result, progress);
+}
+
+BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+    UniformTransport transport = uniform_transport(input, settings, progress);
+    BakeResult result;
+    result.seconds_elements = transport.seconds_elements;
+    result.seconds_form_factors = transport.seconds_form_factors;
+    light_of_sources(input, settings, transport, transport.emitted, result, progress);
+    result.build = std::move(transport.build);
     return result;
 }
 

@@ -3,6 +3,9 @@
 #pragma once
 
 #include "bake/bake.h"
+#include "transport/form_factors.h"
+
+#include <optional>
 
 namespace radiosity::detail {
 
@@ -20,6 +23,10 @@ BuildResult media_elements(const SceneInput& input, const BakeSettings& settings
 std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>& radiance,
                                 const std::vector<Rgb>& emitted);
 
+/// The hierarchy's result in bake()'s shape: the leaves are the elements (the corners' colours as
+/// the hierarchy made them, unless the output pass makes them).
+BakeResult as_bake_result(HierarchyResult&& hierarchy);
+
 /// The hierarchy's settings from the bake's (bake.h's HierarchicalSettings says which it takes).
 HierarchySettings hierarchy_settings(const BakeSettings& settings);
 
@@ -27,6 +34,32 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings);
 /// shot, with F^T too for progressive refinement's exact columns. Beyond the budget, rows are
 /// rendered on demand (memory O(n)).
 bool stores_matrix(std::size_t element_count, const BakeSettings& settings);
+
+/// What the uniform bake builds before any source shines: the elements and, within the budget, their
+/// form factors. Light is linear in its sources, so one transport serves every set of sources lit
+/// over it (the light groups' layers, layers.h), and a caller may keep it between bakes of the same
+/// geometry and materials.
+struct UniformTransport {
+    BuildResult build;           ///< the elements; their emission is set by each light_of_sources
+    std::vector<Rgb> emitted;    ///< each element's own emission, as built from the input
+    bool matrix_stored = false;  ///< F stored, else rendered on demand by each solve
+    std::optional<SparseMatrix> form_factors;
+    double seconds_elements = 0.0, seconds_form_factors = 0.0;
+};
+
+/// The elements and, when stores_matrix, F (progress phases as build_elements' and compute_form_factors').
+UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress);
+
+/// The hemi-cube rows' settings of a bake.
+RowSettings row_settings(const BakeSettings& settings);
+
+/// The light of some sources over `transport`: `emitted`, each element's own emission (zero where
+/// the sources do not emit), and the lamps and world of `settings`; lamps, world and small
+/// emitters shot first, then the solve, then the output pass. Fills `result`'s solve, corners,
+/// matrix counts and the seconds of those phases (added to what it holds); leaves the elements'
+/// emission as the result reports it (own emission plus the lamps' and world's first reflection).
+void light_of_sources(const SceneInput& input, const BakeSettings& settings, UniformTransport& transport,
+                      const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress);
 
 /// The uniform bake (see bake.h): stores F when it fits the budget, else renders rows on demand.
 BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress);

@@ -17,8 +17,16 @@ void check(const BakeSettings& settings) {
         throw InputError("the hierarchical method does not bake media (fog, smoke) yet: use a uniform method");
 }
 
-/// The hierarchy's result in bake()'s shape: the leaves are the elements (the corners' colours as
-/// the hierarchy made them, unless the output pass makes them).
+BakeResult as_bake_result(ZonalBakeResult&& zonal) {
+    BakeResult result = std::move(zonal.surfaces);
+    result.media = static_cast<MediaResult&&>(std::move(zonal));
+    return result;
+}
+
+}  // namespace
+
+namespace detail {
+
 BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     BakeResult result;
     result.build = BuildResult{std::move(hierarchy.output), std::move(hierarchy.build.skipped)};
@@ -38,16 +46,6 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     result.hierarchy = hierarchy.stats;
     return result;
 }
-
-BakeResult as_bake_result(ZonalBakeResult&& zonal) {
-    BakeResult result = std::move(zonal.surfaces);
-    result.media = static_cast<MediaResult&&>(std::move(zonal));
-    return result;
-}
-
-}  // namespace
-
-namespace detail {
 
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     return build_elements(input, settings.element_size, settings.limits, progress);
@@ -96,7 +94,7 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     if (settings.hierarchical.enabled) {
         HierarchyResult hierarchy = bake_hierarchical(input, detail::hierarchy_settings(settings), progress);
         const std::vector<Rgb> emitted = std::move(hierarchy.output_emitted);
-        BakeResult result = as_bake_result(std::move(hierarchy));
+        BakeResult result = detail::as_bake_result(std::move(hierarchy));
         if (settings.final_gather.enabled)
             detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
         return result;

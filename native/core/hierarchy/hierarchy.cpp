@@ -137,52 +137,71 @@ BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& 
     return patches;
 }
 
-HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings,
-                                  const ProgressFn& progress) {
+/// The hierarchy of one bake: patches, tree and links; refined by RefinedHierarchy's constructor.
+struct RefinedHierarchy::State {
+    State(const SceneInput& input_in, const HierarchySettings& settings_in)
+        : input(input_in), settings(settings_in), lights(settings_in.lights) {}
+
+    const SceneInput& input;
+    const HierarchySettings& settings;
     HierarchyResult result;
+    /// Per patch, the World's light arriving (irradiance / pi, its mean over the patch): its first
+    /// reflection is emitted light to the solve; the output shows it as it is at each corner instead.
+    std::vector<Rgb> world_light;
+    std::optional<detail::FaceTextures> textures;
+    Lights lights;  ///< the tree's lamps (light() turns some off)
+    std::optional<hr::Tree> tree;
+    std::optional<hr::Visibility> visibility;
+    std::optional<hr::Refiner> refiner;
+    std::vector<Rgb> own_emission;  ///< per node, its emission without the World's first reflection (light())
+};
+
+namespace {
+
+/// Patches, the World's light on them, the tree and its visibility.
+void build_tree(RefinedHierarchy::State& s, const ProgressFn& progress) {
     // The set-up takes seconds on large scenes: report (and allow cancel) after each stage.
     auto stage = [&](std::size_t done) { detail::report_progress(progress, "elements", done, 3); };
-    auto start = Clock::now();
-    result.build = hierarchy_patches(input, settings);
-    // The world's first reflection per patch (its mean over the patch) is emitted light to the
-    // solve, as bake() counts it; the output shows it as it is at each corner instead.
-    std::vector<Rgb> world_light;
-    if (!settings.world.empty()) {
+    const auto start = Clock::now();
+    HierarchyResult& result = s.result;
+    result.build = hierarchy_patches(s.input, s.settings);
+    if (!s.settings.world.empty()) {
         Elements& e = result.build.elements;
-        world_light = world_irradiance(e, settings.world, progress);
+        s.world_light = world_irradiance(e, s.settings.world, progress);
         for (std::size_t p = 0; p < e.size(); ++p) {
-            world_light[p] /= M_PI;
-            e.emission[p] += e.reflectance[p] * world_light[p];
+            s.world_light[p] /= M_PI;
+            e.emission[p] += e.reflectance[p] * s.world_light[p];
         }
     }
-    const Elements& patches = result.build.elements;
-    std::optional<detail::FaceTextures> textures;
-    if (input.textures) textures.emplace(input);
+    if (s.input.textures) s.textures.emplace(s.input);
     stage(1);
-    hr::Tree tree(result.build, settings.lights, settings.min_element_size, settings.limits.max_elements);
-    tree.textures = textures ? &*textures : nullptr;
-    tree.world_light = world_light;
+    hr::Tree& tree =
+        s.tree.emplace(result.build, s.lights, s.settings.min_element_size, s.settings.limits.max_elements);
+    tree.textures = s.textures ? &*s.textures : nullptr;
+    tree.world_light = s.world_light;
     stage(2);
     std::vector<std::array<int32_t, 4>> patch_corners(tree.patch_count);
     for (std::size_t p = 0; p < tree.patch_count; ++p) patch_corners[p] = tree.nodes[p].corners;
-    const hr::Visibility visibility(std::vector<Vec3>(tree.vertices.begin(), tree.vertices.end()), patch_corners,
-                                    tree.scene_size);
+    s.visibility.emplace(std::vector<Vec3>(tree.vertices.begin(), tree.vertices.end()), patch_corners, tree.scene_size);
     stage(3);
     result.seconds_elements = seconds_since(start);
+}
 
-    hr::Refiner refiner(tree, visibility, settings.max_bytes);
+/// Rounds: each solves with the links it has, then refines those whose error the brighter sources
+/// now make too large; a round that refines nothing ends them.
+void refine(RefinedHierarchy::State& s, const ProgressFn& progress) {
+    hr::Tree& tree = *s.tree;
+    HierarchyResult& result = s.result;
+    hr::Refiner& refiner = s.refiner.emplace(tree, *s.visibility, s.settings.max_bytes);
     hr::pull(tree);
-    start = Clock::now();
+    auto start = Clock::now();
     refiner.link_initial(progress);
     result.seconds_links += seconds_since(start);
-
-    // Each round solves with the links it has, then refines those whose error the brighter
-    // sources now make too large; a round that refines nothing ends the bake.
     int round = 0;
     for (;;) {
         start = Clock::now();
         const hr::SweepResult sweep =
-            hr::solve_links(tree, settings.tolerance, settings.max_iterations, result.residual_history, progress);
+            hr::solve_links(tree, s.settings.tolerance, s.settings.max_iterations, result.residual_history, progress);
         result.seconds_solve += seconds_since(start);
         result.stats.iterations += sweep.sweeps;
         result.residual = sweep.residual;
@@ -191,57 +210,145 @@ HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettin
             throw NumericalError("solve",
                                  sweep.bad_node >= 0 ? hr::input_polygon(tree, tree.nodes[sweep.bad_node]) : -1);
         ++round;
-        if (round >= settings.max_rounds || refiner.memory_cap_reached()) break;  // capped: nothing may split
+        if (round >= s.settings.max_rounds || refiner.memory_cap_reached()) break;  // capped: nothing may split
         const double scale = hr::reference_radiance(tree);
         if (!(scale > 0.0)) break;  // nothing lit: nothing to refine for
         start = Clock::now();
-        const std::size_t refined = refiner.refine(settings.refine_tolerance * scale, progress);
+        const std::size_t refined = refiner.refine(s.settings.refine_tolerance * scale, progress);
         result.seconds_links += seconds_since(start);
         if (refined == 0) break;
     }
     result.stats.rounds = round;
+}
 
-    start = Clock::now();
+/// The leaves as the output mesh, its radiance and each element's own emission (without the first
+/// reflections of lamps and World it holds; `world_on`: whether the World shines).
+hr::LeafMesh output_mesh(RefinedHierarchy::State& s, const std::vector<Rgb>& lamp_light, bool world_on,
+                         HierarchyResult& result, const ProgressFn& progress) {
+    hr::LeafMesh mesh = hr::leaf_mesh(*s.tree, s.result.build, lamp_light, progress);
+    result.output = std::move(mesh.elements);
+    result.output_radiance = std::move(mesh.radiance);
+    const Elements& out = result.output;
+    result.output_emitted.resize(out.size());
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        result.output_emitted[e] = out.emission[e] - mesh.lamp_part[e];
+        const int32_t patch = s.tree->nodes[std::size_t(mesh.leaf[e])].patch;
+        if (world_on && !s.world_light.empty() && patch >= 0)
+            result.output_emitted[e] -= out.reflectance[e] * s.world_light[patch];
+    }
+    return mesh;
+}
+
+void fill_stats(const RefinedHierarchy::State& s, const hr::LeafMesh& mesh, HierarchyStats& stats) {
+    stats.patches = s.result.build.elements.size();
+    stats.clusters = s.tree->cluster_count;
+    stats.leaves = mesh.leaves;
+    stats.nodes = s.tree->nodes.size();
+    stats.links = s.refiner->links();
+    stats.rays = s.refiner->rays();
+    stats.leaf_cap_reached = s.tree->cap_reached();
+    stats.memory_cap_reached = s.refiner->memory_cap_reached();
+    stats.bytes = s.refiner->bytes();
+}
+
+/// Every element node's emission as `on` lights it: its polygon's own emission where that is on,
+/// the World's first reflection where the World is; radiance starts there.
+void set_sources(RefinedHierarchy::State& s, const SourceMask& on) {
+    hr::Tree& tree = *s.tree;
+    const Elements& patches = s.result.build.elements;
+    if (s.own_emission.empty()) {
+        s.own_emission.resize(tree.nodes.size(), Rgb(0.0));
+        for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+            const hr::Node& n = tree.nodes[i];
+            if (!n.is_element()) continue;
+            s.own_emission[i] = n.emission;
+            if (!s.world_light.empty()) s.own_emission[i] -= n.reflectance * s.world_light[std::size_t(n.patch)];
+        }
+    }
+    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+        hr::Node& n = tree.nodes[i];
+        if (!n.is_element()) continue;
+        const std::size_t polygon = std::size_t(patches.polygon[std::size_t(n.patch)]);
+        n.emission = on.polygon[polygon] ? s.own_emission[i] : Rgb(0.0);
+        if (on.world && !s.world_light.empty()) n.emission += n.reflectance * s.world_light[std::size_t(n.patch)];
+        n.radiance = n.emission;
+    }
+    for (std::size_t l = 0; l < s.lights.points.size(); ++l)
+        s.lights.points[l].intensity = on.point[l] ? s.settings.lights.points[l].intensity : Rgb(0.0);
+    for (std::size_t l = 0; l < s.lights.suns.size(); ++l)
+        s.lights.suns[l].irradiance = on.sun[l] ? s.settings.lights.suns[l].irradiance : Rgb(0.0);
+}
+
+}  // namespace
+
+RefinedHierarchy::RefinedHierarchy(const SceneInput& input, const HierarchySettings& settings,
+                                   const ProgressFn& progress)
+    : state_(std::make_unique<State>(input, settings)) {
+    build_tree(*state_, progress);
+    refine(*state_, progress);
+}
+
+RefinedHierarchy::~RefinedHierarchy() = default;
+
+const HierarchyResult& RefinedHierarchy::refinement() const { return state_->result; }
+
+HierarchyResult RefinedHierarchy::output(const ProgressFn& progress) && {
+    State& s = *state_;
+    HierarchyResult& result = s.result;
+    hr::Tree& tree = *s.tree;
+    const auto start = Clock::now();
     std::vector<Rgb> lamp_light = hr::lamp_light(tree);
     const double scale = hr::reference_radiance(tree);
     // Most of the memory, before lamp detail grows the nodes and the output mesh is made.
     free_links(tree, [&](std::size_t n) { return !hr::links_gathered(tree, int32_t(n)); });
-    if (!settings.gathered_output) {
-        const float lamp_finest = std::ldexp(settings.min_element_size, -settings.lamp_detail_levels);
-        result.stats.lamp_splits = hr::split_for_lamp_light(tree, visibility, settings.refine_tolerance * scale,
+    if (!s.settings.gathered_output) {
+        const float lamp_finest = std::ldexp(s.settings.min_element_size, -s.settings.lamp_detail_levels);
+        result.stats.lamp_splits = hr::split_for_lamp_light(tree, *s.visibility, s.settings.refine_tolerance * scale,
                                                             lamp_finest, lamp_light, progress);
     }
-    hr::LeafMesh mesh = hr::leaf_mesh(tree, result.build, lamp_light, progress);
-    result.output = std::move(mesh.elements);
-    result.output_radiance = std::move(mesh.radiance);
-    const Elements& out = result.output;
-    // Each element's own emission, without the first reflections of lamps and World it holds.
-    result.output_emitted.resize(out.size());
-    for (std::size_t e = 0; e < out.size(); ++e) {
-        result.output_emitted[e] = out.emission[e] - mesh.lamp_part[e];
-        const int32_t patch = tree.nodes[std::size_t(mesh.leaf[e])].patch;
-        if (!world_light.empty() && patch >= 0) result.output_emitted[e] -= out.reflectance[e] * world_light[patch];
-    }
-    if (settings.gathered_output) {
+    const hr::LeafMesh mesh = output_mesh(s, lamp_light, true, result, progress);
+    if (s.settings.gathered_output) {
         free_links(tree, [](std::size_t) { return true; });
         check_radiance(result);
     } else {
-        corner_output(tree, visibility, settings, input, mesh, world_light, result, progress);
+        corner_output(tree, *s.visibility, s.settings, s.input, mesh, s.world_light, result, progress);
         check_output(result);
     }
     result.seconds_interpolate = seconds_since(start);
+    fill_stats(s, mesh, result.stats);
+    return std::move(result);
+}
 
-    HierarchyStats& stats = result.stats;
-    stats.patches = patches.size();
-    stats.clusters = tree.cluster_count;
-    stats.leaves = mesh.leaves;
-    stats.nodes = tree.nodes.size();
-    stats.links = refiner.links();
-    stats.rays = refiner.rays();
-    stats.leaf_cap_reached = tree.cap_reached();
-    stats.memory_cap_reached = refiner.memory_cap_reached();
-    stats.bytes = refiner.bytes();
+HierarchyResult RefinedHierarchy::light(const SourceMask& on, const ProgressFn& progress) {
+    State& s = *state_;
+    if (!s.settings.gathered_output)
+        throw InputError("a hierarchy lit again by some of its sources needs its output gathered (final gather)");
+    hr::Tree& tree = *s.tree;
+    set_sources(s, on);
+    HierarchyResult result;
+    auto start = Clock::now();
+    hr::pull(tree);
+    const hr::SweepResult sweep =
+        hr::solve_links(tree, s.settings.tolerance, s.settings.max_iterations, result.residual_history, progress);
+    result.seconds_solve = seconds_since(start);
+    result.stats.iterations = sweep.sweeps;
+    result.residual = sweep.residual;
+    result.converged = sweep.converged;
+    if (!sweep.finite)
+        throw NumericalError("solve", sweep.bad_node >= 0 ? hr::input_polygon(tree, tree.nodes[sweep.bad_node]) : -1);
+    start = Clock::now();
+    const hr::LeafMesh mesh = output_mesh(s, hr::lamp_light(tree), on.world, result, progress);
+    check_radiance(result);
+    result.seconds_interpolate = seconds_since(start);
+    result.stats.rounds = s.result.stats.rounds;
+    fill_stats(s, mesh, result.stats);
     return result;
+}
+
+HierarchyResult bake_hierarchical(const SceneInput& input, const HierarchySettings& settings,
+                                  const ProgressFn& progress) {
+    RefinedHierarchy refined(input, settings, progress);
+    return std::move(refined).output(progress);
 }
 
 }  // namespace radiosity

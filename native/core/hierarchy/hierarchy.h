@@ -44,6 +44,7 @@
 #include "transport/world.h"
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace radiosity {
@@ -106,6 +107,42 @@ struct HierarchyResult {
 /// cut along intersection and contact lines; lamps' quads block light like any patch.
 /// Throws InputError for settings out of range, as bake_hierarchical() does.
 BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings);
+
+/// Which of a scene's sources shine (RefinedHierarchy::light): per input polygon (its emission), per
+/// point or spot lamp, per sun, and the World.
+struct SourceMask {
+    std::vector<uint8_t> polygon, point, sun;
+    bool world = false;
+};
+
+/// A hierarchical bake up to its output: patches, tree and links, refined for all of the scene's
+/// sources. It can then make the bake's output, or be lit again by some of the sources over the same
+/// links and leaves (light group layers, bake/layers.h), as often as asked. Keeps references to the
+/// input and settings, which must outlive it.
+class RefinedHierarchy {
+public:
+    /// Builds and refines as bake_hierarchical() does (its progress phases and errors).
+    RefinedHierarchy(const SceneInput& input, const HierarchySettings& settings, const ProgressFn& progress = {});
+    ~RefinedHierarchy();
+    RefinedHierarchy(const RefinedHierarchy&) = delete;
+    RefinedHierarchy& operator=(const RefinedHierarchy&) = delete;
+
+    /// What the refinement made: the patches (build), its rounds and sweeps, seconds of elements,
+    /// links and solve.
+    const HierarchyResult& refinement() const;
+    /// bake_hierarchical()'s result (frees the links: the last call).
+    HierarchyResult output(const ProgressFn& progress = {}) &&;
+    /// The leaves lit by the sources `on` alone: the links solved again from their emission, lamps
+    /// and World (the refinement is the one for all sources); output, its radiance and own emission,
+    /// the solve's statistics (gathered_output only: the output pass gathers its corners). `build` is
+    /// left empty (refinement()). Progress phases "solve" and "output".
+    HierarchyResult light(const SourceMask& on, const ProgressFn& progress = {});
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+};
 
 /// Bakes `input` hierarchically. Progress phases "elements" (set-up), "links" (refinement, per
 /// round), "solve" and "output" (the leaf mesh);
