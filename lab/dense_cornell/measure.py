@@ -50,7 +50,8 @@ def subdivided_box(cells):
 
 
 class OriginalVertices:
-    """The 8-quad box's truth and where its vertices are in a subdivided box."""
+    """The 8-quad box's truth and its vertices, which keep their indices when bmesh subdivides (new
+    vertices are appended): vertices at one place on different walls are told apart so."""
 
     def __init__(self):
         box = subdivided_box(scenes.CORNELL_CELLS)
@@ -59,15 +60,15 @@ class OriginalVertices:
                                                % deep_cycles.scene_hash(box)[:12])))
         assert cached, "no cached truth of the box: set BAKE_RADIOSITY_TRUTH or run lab/truth/deep_cycles.py"
         self.truth = vertex_error.Truth([luminance(c) for c in np.load(cached[0])["colors"]])
-        self.positions = vertex_positions(box)[luminance.vertices]
+        self.vertices = luminance.vertices
+        self.positions = vertex_positions(box)[self.vertices]
 
     def error(self, box, colors):
         """Relative RMS luminance error (the truth's noise taken out) at the original vertices."""
+        assert np.array_equal(vertex_positions(box)[self.vertices], self.positions), "vertices moved"
         luminance = deep_cycles.vertex_luminance_of(box, deep_cycles.CORNELL_EMITTER_MATERIAL)
-        values = luminance(colors)
-        index = {tuple(p): i for i, p in enumerate(np.round(vertex_positions(box)[luminance.vertices], 5))}
-        at = np.array([index[tuple(p)] for p in np.round(self.positions, 5)])
-        return self.truth.error(values[at])[1]
+        slot = {vertex: i for i, vertex in enumerate(luminance.vertices)}
+        return self.truth.error(luminance(colors)[[slot[v] for v in self.vertices]])[1]
 
 
 def vertex_positions(box):

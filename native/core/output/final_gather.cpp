@@ -146,7 +146,9 @@ public:
     }
 
     /// `rays` stratified cosine-weighted rays from where element vertex `vertex` of element `e` is
-    /// gathered: how far what they meet is (misses count as `far`).
+    /// gathered: the harmonic mean of the distances to what they meet (rays that leave the scene do
+    /// not count: near an opening the light changes as fast as the distance to its edges says;
+    /// `far` when all leave), the nearest, and whether any met a back face.
     Probe probe(int32_t vertex, std::size_t e, const Vec3& approach, uint32_t place, int rays, float far) const {
         Probe out;
         out.position = first_point(vertex, e, approach);
@@ -157,18 +159,23 @@ public:
         const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
         uint32_t seed = mix_seed(place, 0x960BEU);
         double inverse = 0.0;
+        int hits = 0;
         out.nearest = far;
         for (int i = 0; i < grid * grid; ++i) {
             const double u = (double(i % grid) + next_jitter(seed)) / grid;
             const double v = (double(i / grid) + next_jitter(seed)) / grid;
             const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+            // The fronts alone, whether or not they emit: which points gather may not depend on the light.
+            const hr::Visibility::Hit hit = visibility_.first_hit(origin, direction, 0.0f);
             const double distance = hit.patch < 0 ? double(far) : std::min(double(far), double(hit.distance));
-            inverse += 1.0 / std::max(distance, 1e-12);
+            if (hit.patch >= 0) {
+                inverse += 1.0 / std::max(distance, 1e-12);
+                ++hits;
+            }
             out.nearest = std::min(out.nearest, distance);
             out.back_face |= hit.patch >= 0 && glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f;
         }
-        out.harmonic_distance = double(grid * grid) / inverse;
+        out.harmonic_distance = hits > 0 ? double(hits) / inverse : double(far);
         return out;
     }
 
