@@ -150,7 +150,8 @@ def test_the_summary_wraps_at_the_sidebars_width():
     summary = [line for line in drawn if line]
     assert all(len(line) <= fits for line in summary), [line for line in summary if len(line) > fits]
     text = " ".join(summary)
-    for part in [settings.last_report] + settings.last_accuracy.split("; "):
+    assert settings.last_cost.startswith("Cost: "), settings.last_cost
+    for part in [settings.last_report] + settings.last_accuracy.split("; ") + [settings.last_cost]:
         assert " ".join(part.split()) in text, part
 
 

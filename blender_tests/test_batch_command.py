@@ -57,6 +57,7 @@ def test_bakes_and_saves():
     result = run(harness.batch_command(source, "--output", output, *FURNACE_OPTIONS))
     assert result.returncode == 0, result.stderr
     assert "Bake Radiosity: saved %s" % os.path.abspath(output) in result.stdout, result.stdout
+    assert "Bake Radiosity: Cost: " in result.stdout, result.stdout  # the summary's cost line
     assert_furnace_baked(output)
 
 

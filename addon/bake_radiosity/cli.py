@@ -118,6 +118,7 @@ def _bake_and_save(arguments):
         print("Bake Radiosity warning: %s" % warning, flush=True)
     print("Bake Radiosity: %s" % scene.radiosity.last_report, flush=True)
     print("Bake Radiosity: %s" % scene.radiosity.last_accuracy, flush=True)
+    print("Bake Radiosity: %s" % scene.radiosity.last_cost, flush=True)
     output = arguments.output or bpy.data.filepath
     if not output:
         raise RuntimeError("no --output given and the scene was never saved")

@@ -192,6 +192,7 @@ class BakeJob:
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
             "world": self.world_summary(), "lit_by": self.lit_by(), "light_layers": self.layers_summary(),
+            "gather": summary_lines.gather_cost(r.get("final_gather")),
             "warnings": list(self.warnings),
             # Every phase, so that their sum is the whole bake's time.
             "seconds": {"export": self.seconds_export, "world_map": self.world.seconds if self.world else 0.0,
@@ -199,6 +200,7 @@ class BakeJob:
         }
         scene.radiosity.last_report = summary_lines.report_line(summary)
         scene.radiosity.last_accuracy = summary_lines.accuracy_line(summary)
+        scene.radiosity.last_cost = summary_lines.cost_line(summary)
         return summary
 
     def layers_summary(self):

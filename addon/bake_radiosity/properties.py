@@ -203,6 +203,12 @@ class RadiositySettings(bpy.types.PropertyGroup):
         description="Residual, energy balance and error estimate of the most recent bake",
         default="",
     )
+    last_cost: StringProperty(
+        name="Last Bake Cost",
+        description="What the most recent bake cost: elements, output points gathered and interpolated, rays, "
+                    "and the seconds of each phase",
+        default="",
+    )
 
 
 CLASSES = (RadiosityLightLayer, RadiositySettings)

@@ -44,6 +44,8 @@ def draw_panel(layout, context):
         for part in settings.last_accuracy.split("; ") if settings.last_accuracy else ():
             for line in wrapped_lines(part, context):
                 box.label(text=line)
+        for line in wrapped_lines(settings.last_cost, context) if settings.last_cost else ():
+            box.label(text=line)
 
     column = layout.column()
     column.prop(settings, "quality")

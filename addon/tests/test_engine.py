@@ -96,6 +96,28 @@ class EngineTest(unittest.TestCase):
         self.assertIn("%d elements" % result["elements"], line)
         self.assertIn("(converged)", line)
 
+    def test_the_cost_line_names_what_the_bake_spent(self):
+        # The core's counts and rays as the summary reads them, then the words an artist reads.
+        choice, result = bake(closed_box())
+        gather = summary.gather_cost(result["final_gather"])
+        self.assertEqual(gather["points"] + gather["interpolated"] + gather["buried"], 24)
+        self.assertEqual(list(gather["phases"]), ["field", "wedges", "probes", "points", "seams", "other"])
+        self.assertGreater(gather["phases"]["points"]["rays"], 24 * choice.gather_rays)  # and shadow rays
+        self.assertEqual(summary.gather_cost(None), None)
+        line = summary.cost_line({
+            "elements": 5556, "seconds": {"export": 0.21, "elements": 0.04, "form_factors": 7.94, "solve": 0.5,
+                                          "gather": 12.06, "writeback": 0.3},
+            "gather": {"points": 1204, "interpolated": 6240, "buried": 3, "phases": {
+                "field": {"seconds": 2.0, "rays": 1_000_000}, "wedges": {"seconds": 0.8, "rays": 2_000_000},
+                "probes": {"seconds": 0.3, "rays": 500_000}, "points": {"seconds": 7.2, "rays": 40_000_000},
+                "seams": {"seconds": 1.74, "rays": 3_000_000}, "other": {"seconds": 0.02, "rays": 0}}}})
+        self.assertEqual(
+            line, "Cost: 5,556 elements; 1,204 output points gathered, 6,240 interpolated, 3 inside other geometry; "
+                  "46.5 million rays; export 0.2 s, form factors 7.9 s, solve 0.5 s, final gather 12.1 s (field 2.0 "
+                  "s, light around corners 0.8 s, probes 0.3 s, output points 7.2 s, seams 1.7 s), writeback 0.3 s")
+        self.assertEqual(summary.cost_line({"elements": 24, "seconds": {"solve": 1.0}}),
+                         "Cost: 24 elements; solve 1.0 s")
+
     def test_the_gathers_error_estimate_covers_the_furnaces_error(self):
         # Every inner corner's light is exactly E / (1 - rho); Medium gathers every corner.
         rho, emitted = 0.6, 2.0

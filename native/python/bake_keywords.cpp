@@ -85,9 +85,11 @@ void read_final_gather(KeywordReader& keywords, FinalGatherSettings& gather) {
     keywords.read("gather_rays", gather.rays);
     keywords.read("gather_shadow_rays", gather.shadow_rays);
     keywords.read("gather_field_rays", gather.field_rays);
+    keywords.read("gather_cache_accuracy", gather.cache_accuracy);
     if (gather.rays < 1) throw InputError("gather_rays must be >= 1");
     if (gather.shadow_rays < 1) throw InputError("gather_shadow_rays must be >= 1");
     if (gather.field_rays < 0) throw InputError("gather_field_rays must be >= 0");
+    if (!(gather.cache_accuracy >= 0.0)) throw InputError("gather_cache_accuracy must be >= 0");
 }
 
 void read_media(KeywordReader& keywords, MediaSettings& media) {
@@ -184,6 +186,21 @@ void add_media(const MediaResult& media, py::dict& out) {
     out["grids"] = grids;
 }
 
+/// The final gather's phases (GatherCost), each {"seconds", "rays"}, in their order.
+py::dict gather_phases(const GatherCost& cost) {
+    py::dict phases;
+    const std::pair<const char*, const GatherPhaseCost*> named[] = {{"field", &cost.field},   {"wedges", &cost.wedges},
+                                                                    {"probes", &cost.probes}, {"points", &cost.points},
+                                                                    {"seams", &cost.seams},   {"other", &cost.other}};
+    for (const auto& [name, phase] : named) {
+        py::dict one;
+        one["seconds"] = phase->seconds;
+        one["rays"] = phase->rays;
+        phases[name] = one;
+    }
+    return phases;
+}
+
 }  // namespace
 
 BakeSettings bake_settings(const py::kwargs& given) {
@@ -260,7 +277,9 @@ py::dict bake_result(const BakeResult& result) {
     if (result.gathered_points + result.buried_points > 0) {  // the final gather ran
         py::dict gather;
         gather["points"] = result.gathered_points;
+        gather["interpolated"] = result.interpolated_points;
         gather["buried"] = result.buried_points;
+        gather["phases"] = gather_phases(result.gather_cost);
         if (result.gather_statistics) add_gather_statistics(*result.gather_statistics, gather);
         out["final_gather"] = gather;
     }

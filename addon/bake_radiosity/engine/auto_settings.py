@@ -39,6 +39,7 @@ class Gathered:
     rays: int           # indirect rays per output corner
     field_rays: int = 0  # indirect rays per element vertex for the field the corners read (0: the solution)
     shadow_rays: int = 64  # shadow rays per output corner, shared by the emitting elements it sees
+    cache_accuracy: float = 0.0  # Ward's a: corners read indirect light from gathered neighbours (0: all gather)
 
 
 @dataclass(frozen=True)
@@ -70,12 +71,19 @@ class Preset:
 # reach 1.06% with 4096. With the field, the corners on seams also keep how the light turns around
 # them (corner_wedges.h): Medium 0.92%, High 0.58%. Draft's 256 rays are its limit: a field changes
 # nothing there (3.85% -> 3.80%), and without one it keeps no such tables.
+# Sharing (irradiance caching between output corners, Ward's accuracy a: cache_accuracy): Medium's
+# error at the 8-quad box's own vertices with its quads cut into 1, 2x2 and 4x4 (lab/dense_cornell/
+# measure.py): gathered everywhere 0.93%, 0.97%, 0.62%; a = 0.15 0.93%, 1.09%, 0.72% for half the
+# CPU time at 4x4; a = 0.2 1.21%, 1.24%, 0.73% for little less. High keeps more margin under its
+# 0.75% target with a = 0.1 (docs/benchmarks.md, the Cornell box subdivided). Draft is not shared.
 PRESETS = {
     "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
     "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
-                     gathered=Gathered(16, 4.0, near_field=True, rays=3136, field_rays=64, shadow_rays=256)),
+                     gathered=Gathered(16, 4.0, near_field=True, rays=3136, field_rays=64, shadow_rays=256,
+                                       cache_accuracy=0.15)),
     "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
-                   gathered=Gathered(32, 4.0, near_field=True, rays=6400, field_rays=64, shadow_rays=256)),
+                   gathered=Gathered(32, 4.0, near_field=True, rays=6400, field_rays=64, shadow_rays=256,
+                                     cache_accuracy=0.1)),
 }
 # Custom quality's final gather.
 GATHER_RAYS = 1024
@@ -109,6 +117,7 @@ class Choice:
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
     gather_field_rays: int = 0  # its rays per element vertex for the field the corners read (0: none)
     gather_shadow_rays: int = 64  # its shadow rays per output corner
+    gather_cache_accuracy: float = 0.0  # its irradiance caching between output corners (0: every corner gathers)
     direct_emitter_area: float = 0.0  # emitting elements smaller than this light elements directly
     direct_emitters: int = 0    # how many emitting elements that is
 
@@ -117,7 +126,8 @@ class Choice:
         keywords = {"final_gather": self.gather_rays > 0}
         if self.gather_rays > 0:
             keywords.update(gather_rays=self.gather_rays, gather_field_rays=self.gather_field_rays,
-                            gather_shadow_rays=self.gather_shadow_rays)
+                            gather_shadow_rays=self.gather_shadow_rays,
+                            gather_cache_accuracy=self.gather_cache_accuracy)
         return keywords
 
     def stability_keywords(self):
@@ -227,12 +237,14 @@ def _choose(settings, exported, media, size, preset, gathered):
         tolerance = float(settings["tolerance"])
         refine_tolerance = float(settings["refine_tolerance"])
         near_field, rays, field_rays, shadow_rays = False, GATHER_RAYS, 0, Gathered.shadow_rays
+        cache_accuracy = Gathered.cache_accuracy
     else:
         solution = preset.gathered if gathered else preset
         element_size, tolerance = size / solution.divisions, preset.tolerance
         refine_tolerance = preset.refine_tolerance
         near_field, rays = solution.near_field, preset.gathered.rays
         field_rays, shadow_rays = preset.gathered.field_rays, preset.gathered.shadow_rays
+        cache_accuracy = preset.gathered.cache_accuracy
         # The resolution follows the solution's cells (a preset's own, or its gathered one's).
         preset = dataclasses.replace(preset, cells=solution.cells)
 
@@ -274,7 +286,7 @@ def _choose(settings, exported, media, size, preset, gathered):
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
                   gather_rays=rays if gather else 0, gather_field_rays=field_rays if gather else 0,
-                  gather_shadow_rays=shadow_rays,
+                  gather_shadow_rays=shadow_rays, gather_cache_accuracy=cache_accuracy if gather else 0.0,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 

@@ -40,6 +40,52 @@ def layers_text(summary):
         len(layers["groups"]), groups, layers["bytes"] / (1 << 20), summary["memory_budget_bytes"] / (1 << 20))
 
 
+# The bake's phases (the core's seconds and the add-on's own) and the final gather's, as the cost
+# line names them, in the order they run.
+PHASE_NAMES = {"export": "export", "world_map": "World map", "elements": "elements", "lights": "lamps",
+               "world": "World light", "small_emitters": "small emitters", "form_factors": "form factors",
+               "solve": "solve", "zones": "zones", "interpolate": "interpolation", "gather": "final gather",
+               "writeback": "writeback"}
+GATHER_PHASE_NAMES = {"field": "field", "wedges": "light around corners", "probes": "probes",
+                      "points": "output points", "seams": "seams", "other": "other"}
+
+
+def gather_cost(final_gather):
+    """The final gather's counts and phases from the core's result (None when it did not run)."""
+    if not final_gather:
+        return None
+    return {"points": int(final_gather["points"]), "interpolated": int(final_gather.get("interpolated", 0)),
+            "buried": int(final_gather["buried"]),
+            "phases": {name: {"seconds": float(phase["seconds"]), "rays": int(phase["rays"])}
+                       for name, phase in final_gather.get("phases", {}).items()}}
+
+
+def cost_line(summary):
+    """What the bake cost and why, in words: its elements, the output points the final gather
+    gathered and those whose indirect light it interpolated between them, the rays it traced, and
+    each phase's seconds (the gather's own phases in brackets); phases under 0.05 s are left out."""
+    gather = summary.get("gather")
+    parts = ["%s elements" % format(summary["elements"], ",")]
+    if gather:
+        points = "%s output points gathered, %s interpolated" % (format(gather["points"], ","),
+                                                                 format(gather["interpolated"], ","))
+        if gather["buried"]:
+            points += ", %s inside other geometry" % format(gather["buried"], ",")
+        rays = sum(phase["rays"] for phase in gather["phases"].values())
+        parts += [points, "%.3g million rays" % (rays / 1e6)]
+    phases = []
+    for name, seconds in summary["seconds"].items():
+        if seconds < 0.05:
+            continue
+        text = "%s %.1f s" % (PHASE_NAMES.get(name, name), seconds)
+        if name == "gather" and gather:
+            inner = ["%s %.1f s" % (GATHER_PHASE_NAMES.get(part, part), phase["seconds"])
+                     for part, phase in gather["phases"].items() if phase["seconds"] >= 0.05]
+            text += " (%s)" % ", ".join(inner) if inner else ""
+        phases.append(text)
+    return "Cost: %s; %s" % ("; ".join(parts), ", ".join(phases))
+
+
 def accuracy_line(summary):
     """Residual; energy balance; error estimate; resolution and why (the panel shows one part a line)."""
     return "; ".join((
@@ -93,6 +139,7 @@ def progress_text(info, tolerance):
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
              "gather wedges": "light around the seams' corners",
              "gather field": "final gather at the elements' vertices", "gather": "final gather",
+             "gather probes": "final gather's probe rays",
              "gather seams": "final gather at seams",
              "world": "world light", "textures": "texture means",
              "solve rows": "solving, rows of this sweep"}.get(info["phase"], info["phase"])

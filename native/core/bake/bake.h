@@ -27,6 +27,7 @@
 #include "media/zonal.h"
 #include "media/zonal_grids.h"
 #include "output/final_gather_settings.h"
+#include "output/gather_cost.h"
 #include "output/gather_statistics.h"
 #include "output/interpolation.h"
 #include "solve/solver.h"
@@ -124,10 +125,12 @@ struct BakeResult {
     std::size_t matrix_bytes = 0;     ///< matrices held at once (progressive: F and F^T)
     double seconds_elements = 0, seconds_lights = 0, seconds_form_factors = 0, seconds_solve = 0,
            seconds_interpolate = 0;
-    double seconds_world = 0;         ///< the world's light on the elements (0 without a world)
-    double seconds_gather = 0;        ///< the final gather (0 when off)
-    std::size_t gathered_points = 0;  ///< output vertices whose colour the final gather computed
-    std::size_t buried_points = 0;    ///< output vertices whose gathered light was not finite: interpolated colour kept
+    double seconds_world = 0;             ///< the world's light on the elements (0 without a world)
+    double seconds_gather = 0;            ///< the final gather (0 when off)
+    std::size_t gathered_points = 0;      ///< output vertices the final gather gathered with their own rays
+    std::size_t interpolated_points = 0;  ///< output vertices whose indirect light it read from gathered ones
+    std::size_t buried_points = 0;        ///< output vertices whose gathered light was not finite: interpolated colour kept
+    GatherCost gather_cost;               ///< the final gather's phases: seconds and rays (gather_cost.h)
     /// What the final gather found at the output corners besides their colours (with the gather).
     std::optional<GatherStatistics> gather_statistics;
     std::size_t direct_emitters = 0;     ///< emitting elements lit directly (direct_emitter_area)

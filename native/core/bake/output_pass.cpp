@@ -28,12 +28,13 @@ void output_pass(const SceneInput& input, const BakeSettings& settings, const El
 
     if (settings.final_gather.enabled) {
         start = Clock::now();
-        const GatherCounts counts =
+        result.gather_cost =
             final_gather(elements, emitted, radiance, settings.lights, settings.world, settings.final_gather,
                          input.material, input.face_offsets, input.face_count, settings.hard_edge_angle, result.colors,
                          result.light_colors, progress, &result.gather_statistics.emplace());
-        result.gathered_points = counts.gathered;
-        result.buried_points = counts.buried;
+        result.gathered_points = result.gather_cost.gathered;
+        result.interpolated_points = result.gather_cost.interpolated;
+        result.buried_points = result.gather_cost.buried;
         result.seconds_gather = seconds_since(start);
     }
     // Textured faces show their texel at each corner, lit by the light arriving there.

@@ -10,6 +10,7 @@
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
+#include "output/irradiance_cache.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
 #include "visibility/ray_tracer.h"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -33,6 +35,22 @@ namespace {
 struct SeamReads {
     Rgb direct{0.0}, indirect{0.0};                 ///< direct light; the other rays' indirect light
     std::vector<std::pair<int32_t, double>> slots;  ///< (slot 4 e + k of the field, weight), each slot once
+};
+
+/// What a gathered point gives besides its light, each where its pointer is not null.
+struct PointOutputs {
+    SeamReads* reads = nullptr;             ///< what its rays read at the seams (the last pass)
+    PointStatistics* statistics = nullptr;  ///< its sampling statistics (gather_statistics.h)
+    LightGradients* gradients = nullptr;    ///< its indirect light's gradients (irradiance_cache.h)
+    uint8_t* moved = nullptr;               ///< whether its first point was buried and another taken
+};
+
+/// What a point's probe rays found (Gatherer::probe): where it is gathered, the harmonic mean and
+/// the least of their hit distances, and whether any met a back face (it may be buried).
+struct Probe {
+    Vec3 position{0.0f};
+    double harmonic_distance = 0.0, nearest = 0.0;
+    bool back_face = false;
 };
 
 /// Each element's corners as the gather's rays see them, `backs` false: every element that blocks
@@ -82,12 +100,10 @@ public:
     /// place get the same directions, so coplanar faces around a vertex differ only where the
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
     /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
-    /// same vertex picks the same point: the buried test does not read the solution). `moved`: whether
-    /// the first point was buried and another was taken.
+    /// same vertex picks the same point: the buried test does not read the solution).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
                      Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
-                     SeamReads* reads = nullptr, PointStatistics* statistics = nullptr,
-                     uint8_t* moved = nullptr) const {
+                     const PointOutputs& outputs = {}) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
         const float to_centre = glm::length(towards);
@@ -115,14 +131,13 @@ public:
             if (coincident_.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
             const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
-            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, reads, statistics))
-                continue;  // buried
+            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, outputs)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
             if (!direct_known) direct_light = direct(x, origin, n, seed);
-            if (reads != nullptr) reads->direct = direct_light;
+            if (outputs.reads != nullptr) outputs.reads->direct = direct_light;
             light = direct_light + indirect;
             out = emitted_[e] + elements_.reflectance[e] * light;
-            if (moved != nullptr) *moved = i > 0;
+            if (outputs.moved != nullptr) *outputs.moved = i > 0;
             return true;
         }
         return false;
@@ -146,12 +161,58 @@ public:
         const uint32_t seed = mix_seed(place, 0x5EEDU);
         Rgb indirect(0.0);
         float seam_share = 0.0f;
-        const bool seen = gather_indirect(origin, n, seed, glm::length(elements_.centre[e] - x), indirect, seam_share,
-                                          nullptr, nullptr, true);
-        if (seen) return false;
+        if (gather_indirect(origin, n, seed, glm::length(elements_.centre[e] - x), indirect, seam_share, {}, true))
+            return false;
         light = direct(x, origin, n, seed) + indirect;
         out = emitted_[e] + elements_.reflectance[e] * light;
         return true;
+    }
+
+    /// Whether element vertex `vertex` of element `e` is gathered where another polygon's face lies
+    /// on its own (coincident_faces.h).
+    bool covered(int32_t vertex, std::size_t e, const Vec3& approach) const {
+        return coincident_.covered(first_point(vertex, e, approach), e);
+    }
+
+    /// The direct light (irradiance / pi) where element vertex `vertex` of element `e` is gathered,
+    /// as radiance_at finds it there.
+    Rgb direct_light(int32_t vertex, std::size_t e, const Vec3& approach, uint32_t place) const {
+        const Vec3 x = first_point(vertex, e, approach), n = elements_.normal[e];
+        return direct(x, lifted(x, n), n, mix_seed(place, 0x5EEDU));
+    }
+
+    /// `rays` stratified cosine-weighted rays from where element vertex `vertex` of element `e` is
+    /// gathered: the harmonic mean of the distances to what they meet (rays that leave the scene do
+    /// not count: near an opening the light changes as fast as the distance to its edges says;
+    /// `far` when all leave), the nearest, and whether any met a back face.
+    Probe probe(int32_t vertex, std::size_t e, const Vec3& approach, uint32_t place, int rays, float far) const {
+        Probe out;
+        out.position = first_point(vertex, e, approach);
+        const glm::dvec3 n(elements_.normal[e]);
+        glm::dvec3 t, b;
+        tangent_frame(n, t, b);
+        const Vec3 origin = lifted(out.position, elements_.normal[e]);
+        const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
+        uint32_t seed = mix_seed(place, 0x960BEU);
+        double inverse = 0.0;
+        int hits = 0;
+        out.nearest = far;
+        for (int i = 0; i < grid * grid; ++i) {
+            const double u = (double(i % grid) + next_jitter(seed)) / grid;
+            const double v = (double(i / grid) + next_jitter(seed)) / grid;
+            const Vec3 direction(cosine_direction(n, t, b, u, v));
+            // The fronts alone, whether or not they emit: which points gather may not depend on the light.
+            const hr::Visibility::Hit hit = visibility_.first_hit(origin, direction, 0.0f);
+            const double distance = hit.patch < 0 ? double(far) : std::min(double(far), double(hit.distance));
+            if (hit.patch >= 0) {
+                inverse += 1.0 / std::max(distance, 1e-12);
+                ++hits;
+            }
+            out.nearest = std::min(out.nearest, distance);
+            out.back_face |= hit.patch >= 0 && glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f;
+        }
+        out.harmonic_distance = hits > 0 ? double(hits) / inverse : double(far);
+        return out;
     }
 
     /// The emitters' and lamps' direct light at `x`, a hair inside element `e`, in parts, seeded as
@@ -184,7 +245,7 @@ public:
         const Vec3 n = elements_.normal[e];
         float seam_share = 0.0f;
         return gather_indirect(lifted(x, n), n, mix_seed(place, 0x5EEDU), glm::length(elements_.centre[e] - x), out,
-                               seam_share, nullptr, nullptr);
+                               seam_share, {});
     }
 
     /// Where the gather at element vertex `vertex` of element `e` starts, unless that is buried.
@@ -206,16 +267,20 @@ private:
     /// more than half of them hit a back face nearer than `near` (buried: then `out` is left as it
     /// was unless `even_buried`). `seam_share`: the share of rays
     /// that met another surface right at the point (closer than kSeam of the element hit). With
-    /// `reads`, what those rays read of the field goes there as weights, the rest as its indirect.
+    /// `outputs.reads`, what those rays read of the field goes there as weights, the rest as its
+    /// indirect; with `outputs.gradients`, the indirect light's gradients from the same rays.
     bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
-                         SeamReads* reads, PointStatistics* statistics, bool even_buried = false) const {
+                         const PointOutputs& outputs, bool even_buried = false) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
         Rgb sum(0.0), rest(0.0);
         std::vector<std::pair<int32_t, double>> slots;
         int back_near = 0, at_seam = 0;
-        RaySpread spread(elements_, statistics, grid_);
+        SeamReads* reads = outputs.reads;
+        RaySpread spread(elements_, outputs.statistics, grid_);
+        std::optional<GradientSamples> gradients;
+        if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
@@ -228,6 +293,7 @@ private:
                 const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
                 sum += seen;
                 spread.add(i, seen, hit);
+                if (gradients) gradients->add(i, seen, hit.distance);
                 const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
@@ -236,8 +302,9 @@ private:
                 } else {
                     rest += seen;
                 }
-            } else if (hit.distance < near) {
-                ++back_near;
+            } else {
+                if (gradients) gradients->add(i, Rgb(0.0), hit.distance);
+                back_near += hit.distance < near;
             }
         }
         const bool buried = 2 * back_near > rays;
@@ -245,6 +312,7 @@ private:
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
         spread.finish(out, rays);
+        if (gradients) *outputs.gradients = gradients->finish();
         if (reads != nullptr) {
             std::sort(slots.begin(), slots.end());
             reads->slots.clear();
@@ -392,12 +460,14 @@ namespace {
 
 /// Element vertices whose place (weld) is shared with an element of another plane: along a room's
 /// edges, where a block stands on a floor. Rays from a point next to a seam meet the other surface
-/// right at it, so they read its light there.
-std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<int32_t>& place, std::size_t places) {
+/// right at it, so they read its light there. `fronts`: only the elements that are not an emitting
+/// polygon's back side count (where surfaces meet, not where an emitter's two sides do).
+std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<int32_t>& place, std::size_t places,
+                                   bool fronts = false) {
     std::vector<int32_t> first_element(places, -1);
     std::vector<uint8_t> seam_place(places, 0);
     for (std::size_t e = 0; e < elements.size(); ++e)
-        for (int k = 0; k < elements.corner_count(e); ++k) {
+        for (int k = 0; k < elements.corner_count(e) && !(fronts && elements.is_back(e)); ++k) {
             const std::size_t p = std::size_t(place[elements.corners[e][k]]);
             if (first_element[p] < 0)
                 first_element[p] = int32_t(e);
@@ -430,7 +500,7 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         Rgb L, light, direct;
         float seam_share = 0.0f;
         if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
-                                 seam_share, direct, false, nullptr, &statistics[v]) &&
+                                 seam_share, direct, false, {nullptr, &statistics[v]}) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
             done[v] = 1;
@@ -646,29 +716,141 @@ void solve_seams(const Elements& elements, const std::vector<Rgb>& emitted, cons
     }
 }
 
+/// The wall clock and the rays traced (GatherCost), read phase by phase.
+class PhaseMeter {
+public:
+    PhaseMeter(const hr::Visibility& visibility, const hr::Visibility* back_sides)
+        : visibility_(visibility), back_sides_(back_sides), start_(Clock::now()), rays_(traced()) {}
+    /// Adds the seconds and rays since the last call (or the start) to `phase`.
+    void add_to(GatherPhaseCost& phase) {
+        const Clock::time_point now = Clock::now();
+        const std::uint64_t rays = traced();
+        phase.seconds += std::chrono::duration<double>(now - start_).count();
+        phase.rays += rays - rays_;
+        start_ = now;
+        rays_ = rays;
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    std::uint64_t traced() const {
+        return visibility_.rays_traced() + (back_sides_ != nullptr ? back_sides_->rays_traced() : 0);
+    }
+    const hr::Visibility& visibility_;
+    const hr::Visibility* back_sides_;
+    Clock::time_point start_;
+    std::uint64_t rays_;
+};
+
+/// The output points whose indirect light is read from gathered ones (irradiance_cache.h): per
+/// gathered point (GatherPoints::points), the records it reads (point, weight; none: it gathers its
+/// own), and where each output point is gathered.
+struct SharedLight {
+    std::vector<std::vector<std::pair<int32_t, double>>> from;
+    std::vector<CachePoint> at;
+    bool interpolated(std::size_t i) const { return !from.empty() && !from[i].empty(); }
+};
+
+/// Probe rays per output point for its records' harmonic mean distance.
+constexpr int kProbeRays = 64;
+
+/// Which output points gather (irradiance_cache.h plan_cache), from their probe rays: those at
+/// `keep_vertex` (seams, turning vertices), those whose probe met a back face (maybe buried) or a
+/// surface nearer than their element's size (a contact), and the records; `accuracy` <= 0: all.
+SharedLight share_light(const Gatherer& gatherer, const Elements& elements, const GatherPoints& gathered,
+                        const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
+                        const std::vector<uint8_t>& keep_vertex, double accuracy, float scene_size,
+                        const ProgressFn& progress) {
+    SharedLight shared;
+    if (!(accuracy > 0.0)) return shared;
+    const std::vector<int32_t>& points = gathered.points;
+    std::vector<int32_t> output;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (gathered.is_output[std::size_t(points[i])]) output.push_back(int32_t(i));
+    std::vector<CachePoint> cache(output.size());
+    parallel_rows("gather probes", output.size(), 16, 0, progress, [&](std::size_t c) {
+        const int32_t v = points[std::size_t(output[c])];
+        const std::size_t e = std::size_t(gathered.element_at[std::size_t(v)]);
+        const Probe probe =
+            gatherer.probe(v, e, approach[std::size_t(v)], uint32_t(place[std::size_t(v)]), kProbeRays, scene_size);
+        const bool contact = probe.nearest < std::sqrt(double(elements.area[e]));
+        cache[c] = {glm::dvec3(probe.position), glm::dvec3(elements.normal[e]), probe.harmonic_distance,
+                    keep_vertex[std::size_t(v)] || probe.back_face || contact ||
+                        gatherer.covered(v, e, approach[std::size_t(v)])};
+
+        return true;
+    });
+    const CachePlan plan = plan_cache(cache, accuracy);
+    shared.from.resize(points.size());
+    shared.at.resize(points.size());
+    for (std::size_t c = 0; c < output.size(); ++c) {
+        shared.at[std::size_t(output[c])] = cache[c];
+        for (const auto& [record, weight] : plan.from[c])
+            shared.from[std::size_t(output[c])].emplace_back(output[std::size_t(record)], weight);
+    }
+    return shared;
+}
+
+/// The gathered points' values, light and statistics, and each one's direct light and gradients.
+struct PointValues {
+    std::vector<Rgb> value, light, direct;
+    std::vector<LightGradients> gradients;
+    std::vector<uint8_t> done;
+    std::vector<PointStatistics> statistics;
+};
+
+/// The interpolated points' light: their own direct light plus the indirect light read from the
+/// gathered records (light - direct) with their gradients, weighted over those gathered. A point
+/// whose records all failed is left undone (buried). Its statistics: the records' sampling
+/// variance and probe read, as the weighted mean is.
+void read_shared(const SharedLight& shared, const Elements& elements, const std::vector<Rgb>& emitted,
+                 const GatherPoints& gathered, PointValues& p) {
+    for (std::size_t i = 0; i < shared.from.size(); ++i) {
+        if (!shared.interpolated(i)) continue;
+        double total = 0.0;
+        for (const auto& [r, weight] : shared.from[i]) total += p.done[std::size_t(r)] ? weight : 0.0;
+        p.done[i] = total > 0.0;
+        if (!p.done[i]) continue;
+        Rgb indirect(0.0), variance(0.0), probe_read(0.0);
+        for (const auto& [r, weight] : shared.from[i]) {
+            const std::size_t k = std::size_t(r);
+            if (!p.done[k]) continue;
+            const double w = weight / total;
+            indirect += w * read_record(shared.at[k], p.light[k] - p.direct[k], p.gradients[k], shared.at[i]);
+            variance += w * w * p.statistics[k].variance;
+            probe_read += w * p.statistics[k].probe_read;
+        }
+        const std::size_t e = std::size_t(gathered.element_at[std::size_t(gathered.points[i])]);
+        p.light[i] = glm::max(p.direct[i] + indirect, Rgb(0.0));
+        p.value[i] = emitted[e] + elements.reflectance[e] * p.light[i];
+        p.statistics[i].indirect = indirect;
+        p.statistics[i].variance = variance;
+        p.statistics[i].probe_read = probe_read;
+    }
+}
+
 /// Output corners whose point, where Cycles bakes them, lies inside other geometry (a face running
-/// on under a wall, into a beam or a brush) were gathered from a point moved to the visible side,
-/// which the field and the seams read, or not at all where every point was buried. What the corner
-/// shows is what Cycles bakes there: the light at that point, nearly none inside a closed solid,
-/// which both bakes then interpolate across the face alike.
-void bake_buried_corners_as_cycles(const Gatherer& gatherer, const std::vector<int32_t>& points,
-                                   const std::vector<int32_t>& element_at, const std::vector<uint8_t>& is_output,
+/// on under a wall, into a beam or a brush, or lying on another face) were gathered from a point
+/// moved to the visible side, which the field and the seams read, or not at all where every point
+/// was buried. What the corner shows is what Cycles bakes there: the light at that point, nearly
+/// none inside a closed solid, which both bakes then interpolate across the face alike.
+void bake_buried_corners_as_cycles(const Gatherer& gatherer, const GatherPoints& gathered,
                                    const std::vector<uint8_t>& moved, const std::vector<Vec3>& approach,
-                                   const std::vector<int32_t>& place, const ProgressFn& progress,
-                                   std::vector<Rgb>& value, std::vector<Rgb>& light, std::vector<uint8_t>& done) {
+                                   const std::vector<int32_t>& place, const ProgressFn& progress, PointValues& p) {
+    const std::vector<int32_t>& points = gathered.points;
     std::vector<std::size_t> buried;
     for (std::size_t i = 0; i < points.size(); ++i)
-        if ((moved[i] || !done[i]) && is_output[std::size_t(points[i])]) buried.push_back(i);
+        if ((moved[i] || !p.done[i]) && gathered.is_output[std::size_t(points[i])]) buried.push_back(i);
     parallel_rows("gather buried corners", buried.size(), 4, 0, progress, [&](std::size_t t) {
         const std::size_t i = buried[t];
-        const int32_t v = points[i];
+        const std::size_t v = std::size_t(points[i]);
         Rgb L, H;
-        if (gatherer.buried_at_corner(v, std::size_t(element_at[std::size_t(v)]), approach[std::size_t(v)],
-                                      uint32_t(place[std::size_t(v)]), L, H) &&
+        if (gatherer.buried_at_corner(points[i], std::size_t(gathered.element_at[v]), approach[v], uint32_t(place[v]),
+                                      L, H) &&
             std::isfinite(L.r + L.g + L.b + H.r + H.g + H.b)) {
-            value[i] = L;
-            light[i] = H;
-            done[i] = 1;
+            p.value[i] = L;
+            p.light[i] = H;
+            p.done[i] = 1;
         }
         return true;
     });
@@ -676,13 +858,14 @@ void bake_buried_corners_as_cycles(const Gatherer& gatherer, const std::vector<i
 
 }  // namespace
 
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-                          const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
-                          const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
-                          float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                          const ProgressFn& progress, GatherStatistics* statistics) {
-    GatherCounts counts;
-    if (elements.size() == 0) return counts;
+GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
+                        const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
+                        const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
+                        float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
+                        const ProgressFn& progress, GatherStatistics* statistics) {
+    GatherCost cost;
+    if (elements.size() == 0) return cost;
+    const auto started = std::chrono::steady_clock::now();
     const std::vector<Vec3> approach = corner_approach(elements, face_offsets, face_count);
     std::size_t places = 0;
     const std::vector<int32_t> place = weld_points(elements.vertices, weld_tolerance(elements.vertices), places);
@@ -702,6 +885,9 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
     const PolygonCentres polygon_centre(elements);
+    const std::vector<uint8_t> turning = turning_vertices(elements, place, places);
+    PhaseMeter meter(visibility, back_sides);
+    cost.other.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     // The first pass reads the interpolated solution, or the field gathered from it. Points whose rays met a seam read
     // the other surface's light right at it, where interpolation is least like the light (a room's corner is half lit
@@ -721,6 +907,7 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
+        meter.add_to(cost.field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
         // point (along the same shadow rays as at the vertex, the change has little noise).
         FinalGatherSettings wedge_settings = settings;
@@ -728,17 +915,24 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
                                       emitters, runs, visibility, back_sides, coincident, scene_size);
-        wedges = wedge_tables(wedge_gatherer, elements, turning_vertices(elements, place, places), place, element_at,
-                              approach, scene_size, progress);
+        wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
+        meter.add_to(cost.wedges);
     }
     const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
-    std::vector<Rgb> value(points.size(), Rgb(0.0)), light(points.size(), Rgb(0.0));
-    std::vector<Rgb> direct(points.size(), Rgb(0.0));  // each point's direct light, from the first pass
-    std::vector<uint8_t> done(points.size(), 0), recorded(points.size(), 0), moved(points.size(), 0);
+    std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
+    // Each point's direct light comes from the first pass.
+    PointValues p{std::vector<Rgb>(points.size(), Rgb(0.0)),
+                  std::vector<Rgb>(points.size(), Rgb(0.0)),
+                  std::vector<Rgb>(points.size(), Rgb(0.0)),
+                  std::vector<LightGradients>(points.size()),
+                  std::vector<uint8_t>(points.size(), 0),
+                  std::vector<PointStatistics>(points.size(), {field_statistics.empty() ? nullptr : &probe})};
+    std::vector<Rgb>&value = p.value, &light = p.light, &direct = p.direct;
+    std::vector<uint8_t>& done = p.done;
+    std::vector<PointStatistics>& point_statistics = p.statistics;
+    std::vector<uint8_t> recorded(points.size(), 0), moved(points.size(), 0);
     std::vector<float> seam_share(points.size(), 0.0f);
     std::vector<SeamReads> reads(points.size());
-    std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
-    std::vector<PointStatistics> point_statistics(points.size(), {field_statistics.empty() ? nullptr : &probe});
     std::vector<std::size_t> todo(points.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
     auto write_field = [&](const std::vector<uint8_t>& which) {  // the field at those points' vertices
@@ -757,6 +951,13 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     // beside a seam, many of them at once: a field's share of rays each (four times its rays).
     FinalGatherSettings seam_settings = settings;
     if (settings.field_rays > 0) seam_settings.rays = std::min(settings.rays, 4 * settings.field_rays);
+    std::vector<uint8_t> keep_vertex = seam_vertices(elements, place, places, true);
+    for (std::size_t v = 0; v < keep_vertex.size(); ++v) keep_vertex[v] |= turning[v];
+    const SharedLight shared =
+        share_light(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
+                             visibility, back_sides, coincident, scene_size),
+                    elements, gathered, approach, place, keep_vertex, settings.cache_accuracy, scene_size, progress);
+    meter.add_to(cost.probes);
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
@@ -767,12 +968,17 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
+            if (shared.interpolated(i)) {  // its direct light only; its indirect is read below
+                direct[i] =
+                    gatherer.direct_light(points[i], e, approach[std::size_t(points[i])], uint32_t(place[points[i]]));
+                return true;
+            }
             Rgb L, H;
             float share = 0.0f;
             if ((is_output[points[i]] ? gatherer : seam_gatherer)
                     .radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
                                  uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
-                                 last ? &reads[i] : nullptr, &point_statistics[i], &moved[i]) &&
+                                 {last ? &reads[i] : nullptr, &point_statistics[i], &p.gradients[i], &moved[i]}) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;
@@ -785,16 +991,20 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
         });
         // The field at gathered vertices becomes their gathered light; next, the points whose rays
         // met a seam.
+        if (pass == 0) read_shared(shared, elements, emitted, gathered, p);
         write_field(done);
+        meter.add_to(pass == 0 ? cost.points : cost.seams);
         todo.clear();
         for (std::size_t i = 0; i < points.size(); ++i)
             if (done[i] && seam_share[i] > 0.0f) todo.push_back(i);
     }
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
-    const Gatherer corner_gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                   visibility, back_sides, coincident, scene_size, &wedges);
-    bake_buried_corners_as_cycles(corner_gatherer, points, element_at, is_output, moved, approach, place, progress,
-                                  value, light, done);
+    read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
+    meter.add_to(cost.seams);
+    bake_buried_corners_as_cycles(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings,
+                                           emitters, runs, visibility, back_sides, coincident, scene_size, &wedges),
+                                  gathered, moved, approach, place, progress, p);
+    meter.add_to(cost.points);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the
     // mean of its faces'); points whose light is not finite keep the interpolated colour.
@@ -819,8 +1029,10 @@ GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emit
     replace_corners(elements, material, hard_edge_angle, slot_value, known, colors);
     replace_corners(elements, material, hard_edge_angle, slot_light, known, light_colors);
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (is_output[points[i]]) (done[i] ? counts.gathered : counts.buried) += 1;
-    return counts;
+        if (is_output[points[i]])
+            (!done[i] ? cost.buried : shared.interpolated(i) ? cost.interpolated : cost.gathered) += 1;
+    meter.add_to(cost.other);
+    return cost;
 }
 
 }  // namespace radiosity::detail

@@ -58,12 +58,18 @@
 /// at a point is one contour integral over its outline (emitter_groups.h); the group's share of the
 /// shadow rays is spread over its elements by area.
 ///
+/// Sharing (FinalGatherSettings::cache_accuracy): the indirect light of output vertices away from
+/// seams, contacts and turning vertices is read from gathered neighbours with its gradients
+/// (irradiance_cache.h); which vertices gather is decided from 64 probe rays' hit distances and
+/// the normals, never from the light. Their direct light is gathered as everywhere.
+///
 /// Cost: per output vertex, `rays` rays, its share of `shadow_rays` and a contour integral per
 /// emitting polygon side; per seam vertex 4 x `field_rays` rays; per element vertex `field_rays`;
 /// per element corner at a turning vertex, 16 direct light estimates and 4 x 4 `field_rays` rays.
 #pragma once
 
 #include "output/final_gather_settings.h"
+#include "output/gather_cost.h"
 #include "output/gather_statistics.h"
 #include "output/interpolation.h"
 #include "transport/lights.h"
@@ -71,12 +77,9 @@
 
 namespace radiosity::detail {
 
-struct GatherCounts {
-    std::size_t gathered = 0, buried = 0;
-};
-
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
-/// vertices gathered and those left interpolated (a non-finite result). `emitted` is
+/// vertices gathered, those whose indirect light was read from gathered ones, and those left
+/// interpolated (a non-finite result), and each phase's seconds and rays. `emitted` is
 /// each element's own emission (without the lamps' and the world's first reflection), `radiance`
 /// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
@@ -84,10 +87,10 @@ struct GatherCounts {
 /// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
 /// each later pass; throws Cancelled. `statistics`, if given, takes what the gather found at the
 /// output corners besides their colours (gather_statistics.h).
-GatherCounts final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-                          const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
-                          const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
-                          float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                          const ProgressFn& progress, GatherStatistics* statistics = nullptr);
+GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
+                        const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
+                        const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
+                        float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
+                        const ProgressFn& progress, GatherStatistics* statistics = nullptr);
 
 }  // namespace radiosity::detail

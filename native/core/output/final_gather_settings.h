@@ -21,6 +21,11 @@ struct FinalGatherSettings {
     int field_rays = 0;    ///< indirect rays per element vertex, gathered first for the corners' rays to read
                            ///< (0: they read the solution interpolated, and the corners on seams keep
                            ///< no tables of the light around them: corner_wedges.h)
+    /// Irradiance caching of the indirect light between output corners (irradiance_cache.h): Ward's
+    /// accuracy a, the largest error measure |x - x_i| / R_i + sqrt(1 - n . n_i) at which a corner
+    /// reads a gathered one's indirect light instead of gathering its own; 0: every corner gathers.
+    /// Direct light stays exact at every corner.
+    double cache_accuracy = 0.0;
 };
 
 }  // namespace radiosity

@@ -128,6 +128,7 @@ Visibility::~Visibility() {
 }
 
 bool Visibility::occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const {
+    rays_.fetch_add(1, std::memory_order_relaxed);
     RTCRay ray = make_ray(origin, direction, t_near, t_far);
 #if RADIOSITY_EMBREE_MAJOR == 4
     // Embree 4: the context became optional arguments; the defaults (incoherent rays, no filter,
@@ -171,6 +172,7 @@ bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
 }
 
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
+    rays_.fetch_add(1, std::memory_order_relaxed);
     RTCRayHit query{};
     query.ray = make_ray(from, direction, t_near, 2.0f * scene_size_ + 1.0f);
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;

@@ -13,6 +13,7 @@
 #error "RADIOSITY_EMBREE_MAJOR must be 3 or 4 (set by native/core/CMakeLists.txt)"
 #endif
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -51,6 +52,8 @@ public:
     Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
     /// The gap left at a segment's ends (1e-6 of the scene size).
     float gap() const { return gap_; }
+    /// The rays traced so far (clear, clear_towards and first_hit: one each), from every thread.
+    std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:
     bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
@@ -58,6 +61,7 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     float gap_ = 0.0f, scene_size_ = 0.0f;
+    mutable std::atomic<std::uint64_t> rays_{0};
 };
 
 }  // namespace radiosity::hr

@@ -96,6 +96,20 @@ class FurnaceTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "gather_rays"):
             _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_rays=0)
 
+    def test_final_gather_reports_its_cost_and_shares(self):
+        # The box's corners are all on seams, so with sharing on they still gather their own; each
+        # phase's rays and seconds come back, the points phase's at least the gather rays of 24 points.
+        result = _core.bake(*box_arrays(), element_size=0.25, resolution=64, final_gather=True, gather_rays=64,
+                            gather_shadow_rays=16, gather_cache_accuracy=0.3)
+        gather = result["final_gather"]
+        self.assertEqual((gather["points"], gather["interpolated"], gather["buried"]), (24, 0, 0))
+        self.assertEqual(list(gather["phases"]), ["field", "wedges", "probes", "points", "seams", "other"])
+        self.assertEqual(gather["phases"]["probes"]["rays"], 24 * 64)
+        self.assertGreaterEqual(gather["phases"]["points"]["rays"], 24 * 64)
+        self.assertTrue(all(phase["seconds"] >= 0.0 for phase in gather["phases"].values()))
+        with self.assertRaisesRegex(ValueError, "gather_cache_accuracy"):
+            _core.bake(*box_arrays(), element_size=0.5, resolution=16, final_gather=True, gather_cache_accuracy=-1)
+
     def test_final_gathers_statistics_in_the_furnace(self):
         """What the error estimate reads: every ray sees the walls' reflected light L - E, so each
         corner's indirect share is exactly rho (L - E), its rays do not differ, the field (gathered
