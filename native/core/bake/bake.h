@@ -129,7 +129,7 @@ struct BakeResult {
     double seconds_gather = 0;            ///< the final gather (0 when off)
     std::size_t gathered_points = 0;      ///< output vertices the final gather gathered with their own rays
     std::size_t interpolated_points = 0;  ///< output vertices whose indirect light it read from gathered ones
-    std::size_t buried_points = 0;        ///< output vertices whose gathered light was not finite: interpolated colour kept
+    std::size_t buried_points = 0;        ///< gathered light not finite: interpolated colour kept
     GatherCost gather_cost;               ///< the final gather's phases: seconds and rays (gather_cost.h)
     /// What the final gather found at the output corners besides their colours (with the gather).
     std::optional<GatherStatistics> gather_statistics;
