@@ -125,6 +125,9 @@ def main():
               % (quality, summary["elements"], summary["method"], summary["resolution"], cpu, wall, 100 * measured,
                  100 * clean, mean_ratio, 100 * median), flush=True)
         print("seconds:", {k: round(v, 2) for k, v in summary.get("seconds", {}).items()}, flush=True)
+        estimate = summary.get("error_estimate") or {}
+        print("the summary's estimate: %s %s per corner" % (estimate.get("relation"), estimate.get("typical")),
+              flush=True)
         saved[quality] = baked
     if args.save:
         np.savez(args.save, **saved)
