@@ -93,12 +93,14 @@ def use_unbiased_cycles(samples, seed, bounces=128, volume_bounces=0, transparen
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
 
 
-def cycles_corner_bake(obj, samples, seed, diffuse_only=False):
+def cycles_corner_bake(obj, samples, seed, diffuse_only=False, transparent_bounces=0):
     """(corners, 3) colours of Cycles' Combined bake of `obj` into a new colour attribute 'Cycles
-    <seed>', with use_unbiased_cycles(samples, seed). `diffuse_only`: its Diffuse bake (direct,
-    indirect and colour) instead, the light a surface reflects diffusely, without the glossy
-    highlights a Combined bake adds for a Principled BSDF."""
-    use_unbiased_cycles(samples, seed)
+    <seed>', with use_unbiased_cycles(samples, seed, transparent_bounces=transparent_bounces).
+    `diffuse_only`: its Diffuse bake (direct, indirect and colour) instead, the light a surface
+    reflects diffusely, without the glossy highlights a Combined bake adds for a Principled BSDF.
+    Cycles counts a ray that hits a lamp's disk as a transparent bounce: with none allowed it ends
+    there, the lamp absorbs it."""
+    use_unbiased_cycles(samples, seed, transparent_bounces=transparent_bounces)
     bpy.context.scene.render.bake.target = "VERTEX_COLORS"
     name = "Cycles %d" % seed
     attributes = obj.data.color_attributes

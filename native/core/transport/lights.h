@@ -25,10 +25,10 @@ struct Lights {
 };
 
 /// Irradiance per element (front side only; elements seen from the back cast shadows). Point and
-/// spot lamps: each lamp's exact unshadowed mean over the element (point_polygon_unshadowed)
-/// times the share of its light that reaches 4 stratified points of the element, for the lamps
-/// that matter there and a few picked from the rest (lamp_choice.h); suns by sun_raster.h.
-/// The cost follows the elements and the lamps that light them. Progress phase "lights", one unit
+/// spot lamps: each lamp's unshadowed mean over the element (point_polygon_unshadowed: exact for
+/// a point, its sphere or disk near the element by stratified points) times the share of its light that reaches 4
+/// stratified points of the element, for the lamps that matter there and a few picked from the rest (lamp_choice.h);
+/// suns by sun_raster.h. The cost follows the elements and the lamps that light them. Progress phase "lights", one unit
 /// per element and per sun; throws Cancelled.
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress = {});
 

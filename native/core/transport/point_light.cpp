@@ -2,11 +2,13 @@
 /// @brief Point and spot lamps as spheres or disks (point_light.h).
 #include "transport/point_light.h"
 
+#include "common/stratified.h"
 #include "transport/cone.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace radiosity {
@@ -52,6 +54,28 @@ double distance_to_lamp(const PointLight& light, const View& v, const glm::dvec3
     const double rest = v.distance * v.distance * (along * along - 1.0) + r2;
     const double root = std::sqrt(std::max(0.0, rest));
     return v.distance * along + (v.sin2 < 1.0 ? -root : root);  // the near side, or the way out
+}
+
+/// How much less (or more) light the lamp's sphere or disk gives a polygon than a point at its
+/// centre: the point's light at stratified points of the polygon weighting the ratio of the two
+/// there (a disk facing x gives I cos / (d^2 + r^2) where the point gives I cos / d^2: 0.72 of it
+/// 8 cm from a 5 cm lamp). More points where the polygon is large next to the lamp's `height` over
+/// its plane, whose light peaks under the lamp.
+double shape_over_point(const PointLight& light, const Vec3* corners, int count, const Vec3& normal, double area,
+                        double height) {
+    if (light.radius <= 0.0f) return 1.0;
+    constexpr int kMinGrid = 4, kMaxGrid = 16;
+    const int grid = std::clamp(int(std::ceil(kMinGrid * std::sqrt(area) / height)), kMinGrid, kMaxGrid);
+    std::array<Vec3, kMaxGrid * kMaxGrid> points;
+    detail::stratified_points(corners, count, grid, 0x5A0FU, points.data());
+    PointLight point = light;
+    point.radius = 0.0f;
+    double shaped = 0.0, pointed = 0.0;
+    for (int k = 0; k < grid * grid; ++k) {
+        shaped += max_channel(point_unshadowed(light, points[std::size_t(k)], normal));
+        pointed += max_channel(point_unshadowed(point, points[std::size_t(k)], normal));
+    }
+    return pointed > 0.0 ? shaped / pointed : 1.0;
 }
 
 }  // namespace
@@ -109,7 +133,9 @@ Rgb point_polygon_unshadowed(const PointLight& light, const Vec3* corners, int c
         solid_angle += 2.0 * std::atan2(numerator, denominator);
     }
     const double profile = spot_profile(light, Vec3(glm::normalize(centre - p)));
-    return light.intensity * (profile * solid_angle / area);
+    const double height = glm::dot(glm::dvec3(normal), p - glm::dvec3(corners[0]));
+    return light.intensity *
+           (profile * solid_angle / area * shape_over_point(light, corners, count, normal, area, height));
 }
 
 }  // namespace radiosity

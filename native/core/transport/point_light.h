@@ -58,8 +58,10 @@ Rgb point_irradiance(const PointLight& light, const hr::Visibility& visibility, 
 /// The lamp's mean irradiance over a planar polygon (3 or 4 `corners`, counter-clockwise about
 /// unit `normal`, of `area`) with nothing in between: intensity times the polygon's solid angle
 /// seen from the lamp (Van Oosterom and Strackee 1983, "The solid angle of a plane triangle",
-/// IEEE TBME 30(2)) over its area, the spot's profile taken at the polygon's centre. The power a
-/// point lamp sends the polygon, exactly; a sphere's too while it lies above the polygon's plane.
+/// IEEE TBME 30(2)) over its area, the spot's profile taken at the polygon's centre: the power a
+/// point lamp sends the polygon, exactly. A lamp with a radius gives that times the mean ratio of
+/// its sphere's or disk's light to the point's over stratified points of the polygon, weighted by
+/// the point's light (1 for a sphere above the plane; a disk 8 cm from a surface gives 0.72).
 Rgb point_polygon_unshadowed(const PointLight& light, const Vec3* corners, int count, const Vec3& normal, double area);
 
 }  // namespace radiosity

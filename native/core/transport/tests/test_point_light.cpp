@@ -164,5 +164,32 @@ TEST(PointLight, PolygonGetsThePowerThroughItsSolidAngle) {
     EXPECT_EQ(point_polygon_unshadowed(l, square, 4, Vec3(0, 0, -1), 4.0).r, 0.0);  // its back
 }
 
+/// The mean of the lamp's unshadowed light (point_unshadowed, checked against the integrals above)
+/// over the square [-half, half]^2 at z = 0, by the midpoint rule.
+double square_mean(const PointLight& l, double half) {
+    constexpr int kCells = 400;
+    double sum = 0.0;
+    for (int i = 0; i < kCells; ++i)
+        for (int j = 0; j < kCells; ++j)
+            sum += unshadowed(l, Vec3(float(half * (2.0 * (i + 0.5) / kCells - 1.0)),
+                                      float(half * (2.0 * (j + 0.5) / kCells - 1.0)), 0.0f));
+    return sum / (kCells * kCells);
+}
+
+TEST(PointLight, PolygonNearALampGetsTheLightOfItsDiskOrSphere) {
+    // A shade's 16 cm side 8 cm from a 5 cm lamp, and a 50 cm floor element 6 cm under it: the disk
+    // gives 0.72 of a point's light under it; a sphere above the plane a point's.
+    for (LampShape shape : {LampShape::Disk, LampShape::Sphere}) {
+        for (const auto& [height, half] : {std::pair{0.08, 0.08}, std::pair{0.06, 0.25}, std::pair{1.0, 0.25}}) {
+            const PointLight l = lamp(shape, Vec3(0.01f, -0.02f, float(height)), 0.05f);
+            const Vec3 square[4] = {Vec3(-half, -half, 0), Vec3(half, -half, 0), Vec3(half, half, 0),
+                                    Vec3(-half, half, 0)};
+            const double truth = square_mean(l, half);
+            EXPECT_NEAR(point_polygon_unshadowed(l, square, 4, Vec3(0, 0, 1), 4 * half * half).r, truth, 5e-3 * truth)
+                << int(shape) << " " << height << " " << half;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace radiosity
