@@ -34,12 +34,16 @@ Box element_box(const Elements& elements, std::size_t e, float tolerance) {
 
 CoincidentFaces::CoincidentFaces(const Elements& elements, float tolerance)
     : elements_(elements), tolerance_(tolerance), partners_(elements.size()) {
-    std::vector<Box> boxes(elements.size());
+    std::vector<Box> boxes;
+    std::vector<int32_t> element;  // of each box: the fronts (a back side lies on its own front)
     for (std::size_t e = 0; e < elements.size(); ++e)
-        boxes[e] =
-            elements.is_back(e) ? Box{glm::vec3(INFINITY), glm::vec3(-INFINITY)} : element_box(elements, e, tolerance);
+        if (!elements.is_back(e)) {
+            boxes.push_back(element_box(elements, e, tolerance));
+            element.push_back(int32_t(e));
+        }
     std::mutex found;
-    BoxTree(boxes).visit_overlapping_pairs([&](int32_t a, int32_t b) {
+    BoxTree(boxes).visit_overlapping_pairs([&](int32_t box_a, int32_t box_b) {
+        const int32_t a = element[std::size_t(box_a)], b = element[std::size_t(box_b)];
         const std::size_t i = std::size_t(a), j = std::size_t(b);
         if (elements.polygon[i] == elements.polygon[j] || glm::dot(elements.normal[i], elements.normal[j]) < kSameWay ||
             std::abs(glm::dot(elements.centre[j] - elements.centre[i], elements.normal[i])) > tolerance)
