@@ -193,6 +193,16 @@ def corner_positions(mesh):
     return positions.reshape(-1, 3)[loops]
 
 
+def corner_normals(mesh):
+    """(loops, 3) float array: the normal of each face corner's polygon."""
+    import numpy as np
+    normals = np.empty(len(mesh.polygons) * 3)
+    mesh.polygons.foreach_get("normal", normals)
+    totals = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", totals)
+    return np.repeat(normals.reshape(-1, 3), totals, axis=0)
+
+
 @contextlib.contextmanager
 def patched_setting(name, value):
     """The add-on's auto_settings.<name> set to `value` inside the block."""

@@ -86,12 +86,3 @@ def wall_with_door(plane_x, y_range, height, door, thickness, cell):
     pieces.append(rect((x0, y0, top), (thickness, 0, 0), (0, y1 - y0, 0), (0, 0, -1), cell))
     pieces.append(rect((x0, y0, 0), (thickness, 0, 0), (0, y1 - y0, 0), (0, 0, 1), cell))
     return pieces
-
-
-def corner_normals(mesh):
-    """(loops, 3): the normal of each face corner's polygon."""
-    normals = np.empty(len(mesh.polygons) * 3)
-    mesh.polygons.foreach_get("normal", normals)
-    totals = np.empty(len(mesh.polygons), dtype=np.int64)
-    mesh.polygons.foreach_get("loop_total", totals)
-    return np.repeat(normals.reshape(-1, 3), totals, axis=0)

@@ -127,7 +127,7 @@ def compare(name, obj, regions):
     seeds = np.array([harness.cycles_corner_bake(obj, SAMPLES, seed, transparent_bounces=LAMPS_LET_LIGHT_PASS)
                       .mean(axis=1) for seed in (1, 2)])
     failures = []
-    masks = regions(harness.corner_positions(obj.data), level.corner_normals(obj.data))
+    masks = regions(harness.corner_positions(obj.data), harness.corner_normals(obj.data))
     for region, (mask, per_corner) in masks.items():
         r = region_numbers(baked, seeds, mask)
         print("%s, %s: %d corners, mean %+.2f%% of Cycles' (its noise %.2f%%); per corner RMS %.2f%% (Cycles' "
