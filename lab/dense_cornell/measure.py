@@ -1,6 +1,6 @@
 """The Cornell box of blender_tests/scenes.py (8 quads a wall edge) with every quad cut into k x k
 quads, the scene and its light unchanged, baked at a preset: how the bake's time grows with the
-vertices (issue: cost that follows the light, not the mesh), what each phase cost (the summary's
+vertices, what each phase cost (the summary's
 cost line), and the error at the box's own vertices, which every subdivision keeps, against the
 cached deep Cycles truth of the 8-quad box (lab/truth/deep_cycles.py; lab/final_gather/by_category.py
 measures the same way). Run inside Blender:
