@@ -113,7 +113,7 @@ def power_text(power):
 
 def error_text(error):
     """The error estimate in words; where a quantity is undefined (None) the words say why."""
-    solve = ("at most %.2g%% (solve)" % (100 * error["solve_bound"]) if error["solve_bound"] is not None
+    solve = ("under %.2g%% from the solve's residual" % (100 * error["solve_bound"]) if error["solve_bound"] is not None
              else "no bound from the solve (a surface reflects all light)")
     if error.get("undefined"):
         if error["typical"] is not None:  # light created from nothing: at least its share
