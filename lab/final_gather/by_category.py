@@ -6,7 +6,7 @@ open surfaces. Run inside Blender:
     BLENDER_USER_SCRIPTS=/tmp/profile/scripts BLENDER_USER_CONFIG=/tmp/profile/config \\
       blender -b --factory-startup --python-exit-code 1 --python lab/final_gather/by_category.py -- \\
         --addon-zip build/bake_radiosity.zip --quality MEDIUM,HIGH [--rays 2048,4096] [--worst 10] \\
-        [--cache-accuracy 0,0.2]
+        [--cache-accuracy 0,0.2] [--cells 1,2]
 
 Error: lab/truth/vertex_error.py's (relative RMS luminance per vertex, the truth's noise taken out
 per category); also each category's mean signed error and its share of the squared error. --rays
@@ -66,6 +66,8 @@ def main():
     parser.add_argument("--divisions", default="", help="bake the first quality again with these solutions' divisions")
     parser.add_argument("--cache-accuracy", default="",
                         help="bake the first quality again with these irradiance caching accuracies (0: none)")
+    parser.add_argument("--cells", default="",
+                        help="bake the first quality again with these hemi-cube cells (the solution's resolution)")
     parser.add_argument("--worst", type=int, default=0)
     args = parser.parse_args(argv)
     addon = harness.install_addon(args.addon_zip)
@@ -81,20 +83,10 @@ def main():
     print("truth %s: %d seeds, noise %.3f%%" % (cached[0], len(stored["seeds"]), 100 * truth.noise()))
     auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
 
-    def bake(quality, rays=None, field_rays=None, shadow_rays=None, divisions=None, cache_accuracy=None,
-             report=True):
+    def bake(quality, report=True, **gathered_settings):
+        """Bakes `quality` with its preset's Gathered fields replaced by `gathered_settings`."""
         presets = dict(auto_settings.PRESETS)
-        gathered = presets[quality].gathered
-        if rays:
-            gathered = dataclasses.replace(gathered, rays=rays)
-        if field_rays is not None:
-            gathered = dataclasses.replace(gathered, field_rays=field_rays)
-        if shadow_rays is not None:
-            gathered = dataclasses.replace(gathered, shadow_rays=shadow_rays)
-        if divisions is not None:
-            gathered = dataclasses.replace(gathered, divisions=divisions)
-        if cache_accuracy is not None:
-            gathered = dataclasses.replace(gathered, cache_accuracy=cache_accuracy)
+        gathered = dataclasses.replace(presets[quality].gathered, **gathered_settings)
         presets[quality] = dataclasses.replace(presets[quality], gathered=gathered)
         with harness.patched_setting("PRESETS", presets), harness.Stopwatch() as seconds:
             summary = addon.bake(bpy.context.scene, attribute_name="Radiosity", quality=quality, final_gather=True)
@@ -106,9 +98,10 @@ def main():
                  % (name, (truth.judged & mask).sum(), 100 * truth.error(values, mask)[1],
                     100 * relative[truth.judged & mask].mean(),
                     100 * np.sum(relative[mask] ** 2) / np.sum(relative ** 2)) for name, mask in masks]
-        print("%s, %d rays, %d field rays, %d shadow rays, cache accuracy %g, %d elements, %.2f CPU s, load %.1f: %s"
-              % (quality, summary.get("gather_rays", 0), gathered.field_rays, gathered.shadow_rays,
-                 gathered.cache_accuracy, summary["elements"], seconds.cpu, os.getloadavg()[0], "; ".join(parts)),
+        print("%s, %d rays, %d field rays, %d shadow rays, cache accuracy %g, %g cells, %d elements, %.2f CPU s, "
+              "load %.1f: %s" % (quality, summary.get("gather_rays", 0), gathered.field_rays, gathered.shadow_rays,
+                                 gathered.cache_accuracy, gathered.cells, summary["elements"], seconds.cpu,
+                                 os.getloadavg()[0], "; ".join(parts)),
               flush=True)
         for name, mask in masks[1:]:
             for i in [i for i in np.argsort(-np.abs(relative)) if mask[i]][:args.worst]:
@@ -119,16 +112,10 @@ def main():
     qualities = args.quality.split(",")
     for quality in qualities:
         bake(quality)
-    for rays in filter(None, args.rays.split(",")):
-        bake(qualities[0], int(rays))
-    for field_rays in filter(None, args.field_rays.split(",")):
-        bake(qualities[0], field_rays=int(field_rays))
-    for shadow_rays in filter(None, args.shadow_rays.split(",")):
-        bake(qualities[0], shadow_rays=int(shadow_rays))
-    for divisions in filter(None, args.divisions.split(",")):
-        bake(qualities[0], divisions=int(divisions))
-    for accuracy in filter(None, args.cache_accuracy.split(",")):
-        bake(qualities[0], cache_accuracy=float(accuracy))
+    for field, kind in (("rays", int), ("field_rays", int), ("shadow_rays", int), ("divisions", int),
+                        ("cache_accuracy", float), ("cells", float)):
+        for value in filter(None, getattr(args, field).split(",")):
+            bake(qualities[0], **{field: kind(value)})
 
 
 main()

@@ -1,5 +1,6 @@
 """A converted level (or any scene) baked at Medium with its gathered solution's settings varied,
 against a deep Cycles truth that lab/interior/measure.py cached: the mean over the lit vertices and
+the median and RMS per vertex (the truth's noise taken out as lab/interior/measure.py does), and
 the luminance-weighted ratio to the truth by distance from the nearest lamp (bounce-lit rooms lie
 far from every lamp), each with the truth's own standard error. Run inside Blender:
 
@@ -41,8 +42,11 @@ def report(name, baked, truth_runs, positions, lamps, cpu):
     lit = truth > 0.01 * truth.mean()
     distance = np.min(np.linalg.norm(positions[:, None, :] - lamps[None, :, :], axis=2), axis=1)
     median = float(np.median(np.abs(baked[lit] / truth[lit] - 1)))
-    print("%s: %.1f CPU s, mean %.4f of the truth, median per vertex %.2f%%"
-          % (name, cpu, baked[lit].sum() / truth[lit].sum(), 100 * median), flush=True)
+    noise = np.sqrt(np.mean((truth_runs[:, lit].std(axis=0, ddof=1) / np.sqrt(len(truth_runs)) / truth[lit]) ** 2))
+    rms = np.sqrt(max(np.mean((baked[lit] / truth[lit] - 1) ** 2) - noise ** 2, 0.0))
+    print("%s: %.1f CPU s, mean %.4f of the truth, median per vertex %.2f%%, RMS per vertex %.2f%% (truth's noise "
+          "%.2f%% out)" % (name, cpu, baked[lit].sum() / truth[lit].sum(), 100 * median, 100 * rms, 100 * noise),
+          flush=True)
     for low, high in BANDS:
         band = lit & (distance >= low) & (distance < high)
         if not band.any():
