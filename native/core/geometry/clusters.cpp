@@ -1,0 +1,323 @@
+/// @file clusters.cpp
+/// @brief cluster_elements: greedy pairwise merging of coplanar elements into convex triangles and
+/// quads no longer than the element size (clusters.h).
+#include "geometry/clusters.h"
+
+#include "geometry/polygon_geometry.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <unordered_map>
+
+namespace radiosity {
+namespace {
+
+using detail::DVec3;
+
+/// Two corners are one straight edge when the turn between them is below this sine: float corners
+/// of a subdivided face lie on its edge to about 1e-7 of the coordinates, a few 1e-6 of a small
+/// element's edge.
+constexpr double kStraightSine = 1e-4;
+/// Neighbours are coplanar when their normals differ by less than this cosine (half a degree) and
+/// their corners lie within kPlaneDistance of the element size of each other's plane.
+const double kCoplanarCosine = std::cos(0.5 * M_PI / 180.0);
+constexpr double kPlaneDistance = 1e-3;
+/// Room for rounding in the element size bound: faces cut to exactly the size merge.
+constexpr double kSizeSlack = 1e-4;
+
+/// A group of merged elements: its outline (a convex triangle or quad, CCW about its normal) and
+/// what every member shares.
+struct Region {
+    std::vector<Vec3> corners;
+    std::vector<int32_t> members;
+    DVec3 normal{0.0};
+    int32_t material = 0;
+    Rgb reflectance{0.0};
+    bool alive = true;
+};
+
+bool textured(const SceneInput& input, int32_t face) {
+    const SurfaceTextures* t = input.textures;
+    if (t == nullptr) return false;
+    return (t->reflectance_texture != nullptr && t->reflectance_texture[face] >= 0) ||
+           (t->emission_texture != nullptr && t->emission_texture[face] >= 0);
+}
+
+/// Whether element e may merge: a one-sided front that neither emits nor is a lamp, on no cut or
+/// contact line, of an untextured face.
+bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e) {
+    if (elements.has_twin(e) || max_channel(elements.emission[e]) > 0.0) return false;
+    if (!elements.blocks(e)) return false;
+    if (!elements.cut_edges.empty() && elements.cut_edges[e] != 0) return false;
+    return !textured(input, elements.polygon[e]);
+}
+
+/// An oriented edge between two corners, by their bits: neighbouring faces' elements meet at
+/// bit-identical points (build_elements places shared edge points so).
+struct EdgeKey {
+    std::array<uint32_t, 6> bits;
+    bool operator==(const EdgeKey& other) const { return bits == other.bits; }
+};
+
+struct EdgeHash {
+    std::size_t operator()(const EdgeKey& key) const {
+        std::size_t h = 1469598103934665603ull;
+        for (const uint32_t b : key.bits) h = (h ^ b) * 1099511628211ull;
+        return h;
+    }
+};
+
+uint32_t bits_of(float x) {
+    x += 0.0f;  // -0 and +0 are one place
+    uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+EdgeKey edge_key(const Vec3& from, const Vec3& to) {
+    return {{bits_of(from.x), bits_of(from.y), bits_of(from.z), bits_of(to.x), bits_of(to.y), bits_of(to.z)}};
+}
+
+/// Where an oriented edge is: its region and the corner it starts at; region -1 when two regions
+/// have it (coincident faces), which then merge across it with nobody.
+struct EdgeAt {
+    int32_t region;
+    int corner;
+};
+using EdgeMap = std::unordered_map<EdgeKey, EdgeAt, EdgeHash>;
+
+EdgeMap edges_of(const std::vector<Region>& regions) {
+    EdgeMap map;
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        if (!regions[r].alive) continue;
+        const std::vector<Vec3>& c = regions[r].corners;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            const auto [at, fresh] = map.try_emplace(edge_key(c[k], c[(k + 1) % c.size()]), EdgeAt{int32_t(r), int(k)});
+            if (!fresh) at->second.region = -1;
+        }
+    }
+    return map;
+}
+
+/// Whether corner b lies on the straight line from a to c, between them.
+bool straight(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const DVec3 u = DVec3(b) - DVec3(a), v = DVec3(c) - DVec3(b);
+    const double lengths = glm::length(u) * glm::length(v);
+    return glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= kStraightSine * lengths;
+}
+
+/// The outline without its straight corners.
+std::vector<Vec3> without_straight_corners(std::vector<Vec3> outline) {
+    for (std::size_t k = 0; k < outline.size() && outline.size() > 3;) {
+        const std::size_t n = outline.size();
+        if (straight(outline[(k + n - 1) % n], outline[k], outline[(k + 1) % n]))
+            outline.erase(outline.begin() + std::ptrdiff_t(k));
+        else
+            ++k;
+    }
+    return outline;
+}
+
+/// The outline of regions a and b joined along a's edge from corner k, which is b's from corner m
+/// reversed, if it is a convex triangle or quad.
+std::optional<std::vector<Vec3>> joined_outline(const Region& a, int k, const Region& b, int m) {
+    const std::size_t na = a.corners.size(), nb = b.corners.size();
+    std::vector<Vec3> outline;
+    for (std::size_t i = 1; i <= na; ++i) outline.push_back(a.corners[(std::size_t(k) + i) % na]);  // a_{k+1} .. a_k
+    for (std::size_t i = 2; i < nb; ++i) outline.push_back(b.corners[(std::size_t(m) + i) % nb]);  // b_{m+2} .. b_{m-1}
+    outline = without_straight_corners(std::move(outline));
+    if (outline.size() > 4) return std::nullopt;
+    std::vector<DVec3> points(outline.begin(), outline.end());
+    if (!detail::is_convex(points, a.normal)) return std::nullopt;
+    return outline;
+}
+
+double longest_edge(const std::vector<Vec3>& outline) {
+    double longest = 0.0;
+    for (std::size_t k = 0; k < outline.size(); ++k)
+        longest = std::max(longest, double(glm::length(outline[(k + 1) % outline.size()] - outline[k])));
+    return longest;
+}
+
+/// Whether two regions are one surface in one plane.
+bool alike(const Region& a, const Region& b, double plane_distance) {
+    if (a.material != b.material || a.reflectance != b.reflectance) return false;
+    if (glm::dot(a.normal, b.normal) < kCoplanarCosine) return false;
+    for (const Vec3& p : b.corners)
+        if (std::abs(glm::dot(DVec3(p) - DVec3(a.corners[0]), a.normal)) > plane_distance) return false;
+    return true;
+}
+
+/// One region per mergeable element; `region_of` -1 for the others.
+std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, std::vector<int32_t>& region_of) {
+    std::vector<Region> regions;
+    region_of.assign(elements.size(), -1);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        if (!mergeable(elements, input, e)) continue;
+        Region region;
+        for (int k = 0; k < elements.corner_count(e); ++k)
+            region.corners.push_back(elements.vertices[elements.corners[e][k]]);
+        region.members.push_back(int32_t(e));
+        region.normal = DVec3(elements.normal[e]);
+        region.material = input.material != nullptr ? input.material[elements.polygon[e]] : 0;
+        region.reflectance = elements.reflectance[e];
+        region_of[e] = int32_t(regions.size());
+        regions.push_back(std::move(region));
+    }
+    return regions;
+}
+
+/// The best partner of region r this round: the alike, untaken neighbour whose joined outline is
+/// convex and has the shortest longest edge within `size`.
+struct Partner {
+    int32_t region = -1;
+    std::vector<Vec3> outline;
+    double longest = 0.0;
+};
+
+Partner best_partner(const std::vector<Region>& regions, const EdgeMap& edges, const std::vector<char>& taken,
+                     std::size_t r, double size) {
+    const Region& a = regions[r];
+    Partner best;
+    for (std::size_t k = 0; k < a.corners.size(); ++k) {
+        const auto found = edges.find(edge_key(a.corners[(k + 1) % a.corners.size()], a.corners[k]));
+        if (found == edges.end() || found->second.region < 0) continue;
+        const std::size_t n = std::size_t(found->second.region);
+        if (n == r || taken[n] || !alike(a, regions[n], kPlaneDistance * size)) continue;
+        const std::optional<std::vector<Vec3>> outline = joined_outline(a, int(k), regions[n], found->second.corner);
+        if (!outline) continue;
+        const double longest = longest_edge(*outline);
+        if (longest > size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
+        best = {int32_t(n), *outline, longest};
+    }
+    return best;
+}
+
+/// Merges pairs of regions, each region at most once a round, until no pair merges.
+void merge_regions(std::vector<Region>& regions, double size) {
+    for (bool merged = true; merged;) {
+        merged = false;
+        const EdgeMap edges = edges_of(regions);
+        std::vector<char> taken(regions.size(), 0);
+        for (std::size_t r = 0; r < regions.size(); ++r) {
+            if (!regions[r].alive || taken[r]) continue;
+            Partner partner = best_partner(regions, edges, taken, r, size);
+            if (partner.region < 0) continue;
+            Region &a = regions[r], &b = regions[std::size_t(partner.region)];
+            a.corners = std::move(partner.outline);
+            a.members.insert(a.members.end(), b.members.begin(), b.members.end());
+            b.alive = false;
+            taken[r] = taken[std::size_t(partner.region)] = 1;
+            merged = true;
+        }
+    }
+}
+
+/// Builds the solve elements: vertices shared by position.
+class SolveBuilder {
+public:
+    explicit SolveBuilder(const Elements& output) : output_(output) {
+        if (!output.side.empty()) out_.side.reserve(output.size());
+    }
+
+    /// Output element e as it is.
+    void copy(std::size_t e) {
+        std::array<int32_t, 4> c{-1, -1, -1, -1};
+        for (int k = 0; k < output_.corner_count(e); ++k) c[k] = vertex(output_.vertices[output_.corners[e][k]]);
+        out_.corners.push_back(c);
+        out_.centre.push_back(output_.centre[e]);
+        out_.normal.push_back(output_.normal[e]);
+        out_.area.push_back(output_.area[e]);
+        out_.polygon.push_back(output_.polygon[e]);
+        out_.reflectance.push_back(output_.reflectance[e]);
+        out_.emission.push_back(output_.emission[e]);
+        out_.cut_edges.push_back(output_.cut_edges.empty() ? uint8_t(0) : output_.cut_edges[e]);
+        if (!output_.side.empty()) out_.side.push_back(output_.side[e]);
+        if (!output_.lamp.empty()) out_.lamp.push_back(output_.lamp[e]);
+    }
+
+    /// A merged region, as one element with the surface of its first member.
+    void merged(const Region& region, std::size_t first) {
+        const std::vector<Vec3>& p = region.corners;
+        std::array<int32_t, 4> c{-1, -1, -1, -1};
+        for (std::size_t k = 0; k < p.size(); ++k) c[k] = vertex(p[k]);
+        const DVec3 a(p[0]), b(p[1]), d(p[2]);
+        DVec3 centre = (a + b + d) / 3.0, twice_area = glm::cross(b - a, d - a);
+        if (p.size() == 4) {  // the two triangles' centroids by area, as build_elements' quads
+            const DVec3 e(p[3]);
+            const DVec3 n1 = twice_area, n2 = glm::cross(d - a, e - a);
+            const double w1 = glm::length(n1), w2 = glm::length(n2);
+            centre = (w1 * (a + b + d) / 3.0 + w2 * (a + d + e) / 3.0) / (w1 + w2);
+            twice_area = n1 + n2;
+        }
+        out_.corners.push_back(c);
+        out_.centre.emplace_back(centre);
+        out_.normal.emplace_back(glm::normalize(twice_area));
+        out_.area.push_back(float(0.5 * glm::length(twice_area)));
+        out_.polygon.push_back(output_.polygon[first]);
+        out_.reflectance.push_back(output_.reflectance[first]);
+        out_.emission.push_back(output_.emission[first]);
+        out_.cut_edges.push_back(0);
+        if (!output_.side.empty()) out_.side.push_back(Elements::kOneSided);
+        if (!output_.lamp.empty()) out_.lamp.push_back(0);
+    }
+
+    int32_t last() const { return int32_t(out_.size()) - 1; }
+    Elements take() { return std::move(out_); }
+
+private:
+    int32_t vertex(const Vec3& p) {
+        const auto [at, fresh] = vertex_of_.try_emplace(edge_key(p, p), int32_t(out_.vertices.size()));
+        if (fresh) out_.vertices.push_back(p);
+        return at->second;
+    }
+
+    const Elements& output_;
+    Elements out_;
+    std::unordered_map<EdgeKey, int32_t, EdgeHash> vertex_of_;
+};
+
+}  // namespace
+
+Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size) {
+    Clusters clusters;
+    if (!(element_size > 0.0f)) return clusters;
+    std::vector<int32_t> region_of;
+    std::vector<Region> regions = single_regions(output, input, region_of);
+    merge_regions(regions, double(element_size));
+    bool any = false;
+    for (const Region& region : regions) {
+        if (!region.alive) continue;
+        any = any || region.members.size() > 1;
+        for (const int32_t e : region.members) region_of[std::size_t(e)] = int32_t(&region - regions.data());
+    }
+    if (!any) return clusters;
+
+    // Each merged region becomes one element where its first member (in the output's order) was,
+    // so emitting fronts stay before the back sides.
+    SolveBuilder build(output);
+    std::vector<int32_t> element_of_region(regions.size(), -1);
+    clusters.of_element.assign(output.size(), -1);
+    for (std::size_t e = 0; e < output.size(); ++e) {
+        const int32_t r = region_of[e];
+        if (r < 0 || regions[std::size_t(r)].members.size() == 1) {
+            build.copy(e);
+            clusters.of_element[e] = build.last();
+            continue;
+        }
+        if (element_of_region[std::size_t(r)] < 0) {
+            build.merged(regions[std::size_t(r)], e);
+            element_of_region[std::size_t(r)] = build.last();
+        }
+        clusters.of_element[e] = element_of_region[std::size_t(r)];
+    }
+    clusters.elements = build.take();
+    return clusters;
+}
+
+}  // namespace radiosity

@@ -1,0 +1,133 @@
+/// @file test_clusters.cpp
+/// @brief Solve elements chosen by the element size, not the faces: a finely tessellated surface
+/// merges to as many elements as a coarse one, and only like, coplanar, unlit-by-itself faces merge.
+#include "geometry/clusters.h"
+
+#include "testing/test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace radiosity {
+namespace {
+
+constexpr float kSize = 0.25f;  // the element size: a 1 m square is 4 x 4 elements
+
+Clusters clusters_of(const test::SceneArrays& scene, BuildResult& build) {
+    build = build_elements(scene.input(), kSize);
+    return cluster_elements(build.elements, scene.input(), kSize);
+}
+
+/// Whether point p lies in solve element s (its plane, and inside every edge), within `slack` metres.
+bool inside(const Elements& solve, std::size_t s, const Vec3& p, float slack) {
+    const Vec3 n = solve.normal[s];
+    if (std::abs(glm::dot(p - solve.vertices[solve.corners[s][0]], n)) > slack) return false;
+    const int m = solve.corner_count(s);
+    for (int k = 0; k < m; ++k) {
+        const Vec3 a = solve.vertices[solve.corners[s][k]], b = solve.vertices[solve.corners[s][(k + 1) % m]];
+        if (glm::dot(glm::cross(b - a, p - a), n) < -slack * glm::length(b - a)) return false;
+    }
+    return true;
+}
+
+/// A unit square floor as cells x cells faces: the solve has the coarse square's 16 elements at
+/// every density, each a quad of the element size, covering the output elements it holds.
+TEST(Clusters, SubdividedSquareMergesToTheCoarseElements) {
+    for (const int cells : {4, 8, 16, 32, 64}) {
+        test::SceneArrays floor;
+        floor.add_grid(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 1, 0), cells, Rgb(0.5));
+        BuildResult build;
+        const Clusters clusters = clusters_of(floor, build);
+        ASSERT_EQ(build.elements.size(), std::size_t(cells * cells));
+        if (cells == 4) {
+            EXPECT_FALSE(clusters.merged()) << "faces of the element size stay as they are";
+            continue;
+        }
+        ASSERT_TRUE(clusters.merged());
+        const Elements& solve = clusters.elements;
+        ASSERT_EQ(solve.size(), 16u) << cells;
+        double area = 0.0;
+        for (std::size_t s = 0; s < solve.size(); ++s) {
+            ASSERT_FALSE(solve.is_triangle(s));
+            EXPECT_NEAR(solve.area[s], kSize * kSize, 1e-6);
+            EXPECT_NEAR(solve.normal[s].z, 1.0, 1e-6);
+            area += solve.area[s];
+        }
+        EXPECT_NEAR(area, 1.0, 1e-5);
+        for (std::size_t e = 0; e < build.elements.size(); ++e)
+            ASSERT_TRUE(inside(solve, std::size_t(clusters.of_element[e]), build.elements.centre[e], 1e-6f)) << e;
+    }
+}
+
+/// Each face cut into two triangles: pairs become quads, which merge as before (within a factor 2
+/// of the coarse count: a triangle may be left over at a cluster's edge).
+TEST(Clusters, TriangulatedSquareMergesToFewElements) {
+    for (const int cells : {16, 32}) {
+        test::SceneArrays floor;
+        auto at = [&](int i, int j) { return Vec3(float(i) / float(cells), float(j) / float(cells), 0.0f); };
+        for (int i = 0; i < cells; ++i)
+            for (int j = 0; j < cells; ++j) {
+                floor.add_polygon({at(i, j), at(i + 1, j), at(i + 1, j + 1)}, Rgb(0.5), Rgb(0.0));
+                floor.add_polygon({at(i, j), at(i + 1, j + 1), at(i, j + 1)}, Rgb(0.5), Rgb(0.0));
+            }
+        BuildResult build;
+        const Clusters clusters = clusters_of(floor, build);
+        ASSERT_EQ(build.elements.size(), std::size_t(2 * cells * cells));
+        ASSERT_TRUE(clusters.merged());
+        EXPECT_LE(clusters.elements.size(), 32u) << cells;
+        double area = 0.0;
+        for (const float a : clusters.elements.area) area += a;
+        EXPECT_NEAR(area, 1.0, 1e-5);
+    }
+}
+
+/// Faces merge only with faces of the same surface in the same plane: not across a change of
+/// reflectance or material, a fold, an emitter, or a textured face.
+TEST(Clusters, UnlikeFacesStaySeparate) {
+    const int cells = 16;  // faces of 1/16 m: 4 x 4 of them make an element
+    {
+        test::SceneArrays halves;  // two reflectances, a material change and an emitting strip
+        halves.add_grid(Vec3(0.0f), Vec3(0.5f, 0, 0), Vec3(0, 1, 0), cells / 2, Rgb(0.5));
+        halves.add_grid(Vec3(0.5f, 0, 0), Vec3(0.5f, 0, 0), Vec3(0, 1, 0), cells / 2, Rgb(0.3));
+        halves.add_grid(Vec3(1.0f, 0, 0), Vec3(0.5f, 0, 0), Vec3(0, 1, 0), cells / 2, Rgb(0.3), Rgb(0.0), 7);
+        halves.add_grid(Vec3(1.5f, 0, 0), Vec3(0.5f, 0, 0), Vec3(0, 1, 0), cells / 2, Rgb(0.3), Rgb(1.0));
+        BuildResult build;
+        const Clusters clusters = clusters_of(halves, build);
+        ASSERT_TRUE(clusters.merged());
+        // 3 merged blocks of 2 x 4 elements, and the emitting block's 64 faces, fronts and backs, as they were.
+        EXPECT_EQ(clusters.elements.size(), 3u * 8u + 2u * 64u);
+        for (std::size_t e = 0; e < build.elements.size(); ++e) {
+            const std::size_t s = std::size_t(clusters.of_element[e]);
+            EXPECT_EQ(clusters.elements.reflectance[s], build.elements.reflectance[e]);
+            EXPECT_EQ(halves.material[std::size_t(clusters.elements.polygon[s])],
+                      halves.material[std::size_t(build.elements.polygon[e])]);
+            EXPECT_EQ(clusters.elements.emission[s], build.elements.emission[e]);
+            EXPECT_EQ(clusters.elements.side[s], build.elements.side[e]);
+        }
+    }
+    {
+        test::SceneArrays fold;  // a floor and a wall meeting at an edge: no cluster bends over it
+        fold.add_grid(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 0.5f, 0), cells, Rgb(0.5));
+        fold.add_grid(Vec3(0, 0.5f, 0), Vec3(1, 0, 0), Vec3(0, 0.5f, 0.5f), cells, Rgb(0.5));
+        BuildResult build;
+        const Clusters clusters = clusters_of(fold, build);
+        ASSERT_TRUE(clusters.merged());
+        for (std::size_t e = 0; e < build.elements.size(); ++e)
+            EXPECT_GT(glm::dot(clusters.elements.normal[std::size_t(clusters.of_element[e])], build.elements.normal[e]),
+                      0.9999f);
+    }
+}
+
+/// No element size (one element per polygon): nothing merges.
+TEST(Clusters, NoElementSizeNoMerge) {
+    test::SceneArrays floor;
+    floor.add_grid(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 1, 0), 8, Rgb(0.5));
+    const BuildResult build = build_elements(floor.input(), 0.0f);
+    EXPECT_FALSE(cluster_elements(build.elements, floor.input(), 0.0f).merged());
+}
+
+}  // namespace
+}  // namespace radiosity
