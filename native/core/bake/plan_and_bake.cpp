@@ -51,6 +51,10 @@ BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settin
     return build_elements(input, settings.element_size, settings.limits, progress);
 }
 
+Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings) {
+    return cluster_elements(elements, input, settings.merge_elements ? settings.element_size : 0.0f);
+}
+
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {
     BuildResult build = build_elements(input, settings.element_size);
     build.elements.lamp.clear();
@@ -79,13 +83,19 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     BakePlan plan;
     if (settings.hierarchical.enabled) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
+        plan.solve_elements = plan.build.elements.size();
         return plan;
     }
     plan.build =
         with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
-    plan.matrix_bytes_bound = matrix_bytes_bound(plan.build.elements.size(), settings.resolution);
+    plan.solve_elements = plan.build.elements.size();
+    if (!with_media(settings)) {
+        const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
+        if (clusters.merged()) plan.solve_elements = clusters.elements.size();
+    }
+    plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
     // The media bake always stores its matrix (or refuses to bake beyond the budget).
-    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.build.elements.size(), settings);
+    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.solve_elements, settings);
     return plan;
 }
 
@@ -97,12 +107,15 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         BakeResult result = detail::as_bake_result(std::move(hierarchy));
         if (settings.final_gather.enabled)
             detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
+        result.solve_elements = result.build.elements.size();
         return result;
     }
     if (with_media(settings)) {
         const MediaSettings& m = settings.media;
-        return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress, m.grid_subdivision,
-                                              m.max_block_level));
+        BakeResult result = as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress,
+                                                           m.grid_subdivision, m.max_block_level));
+        result.solve_elements = result.build.elements.size();
+        return result;
     }
     return detail::bake_uniform(input, settings, progress);
 }
