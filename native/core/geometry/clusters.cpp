@@ -30,10 +30,12 @@ constexpr double kPlaneDistance = 1e-3;
 /// Room for rounding in the element size bound: faces cut to exactly the size merge.
 constexpr double kSizeSlack = 1e-4;
 
-/// A group of merged elements: its outline (a convex triangle or quad, CCW about its normal) and
-/// what every member shares.
+/// A group of merged elements: its outline (a convex triangle or quad, CCW about its normal), which
+/// of its edges lie on an intersection or contact line (Elements::cut_edges), and what every member
+/// shares.
 struct Region {
     std::vector<Vec3> corners;
+    std::vector<uint8_t> cut;  ///< per edge, from corner k to k + 1
     std::vector<int32_t> members;
     DVec3 normal{0.0};
     int32_t material = 0;
@@ -48,12 +50,12 @@ bool textured(const SceneInput& input, int32_t face) {
            (t->emission_texture != nullptr && t->emission_texture[face] >= 0);
 }
 
-/// Whether element e may merge: a one-sided front that neither emits nor is a lamp, on no cut or
-/// contact line, of an untextured face.
+/// Whether element e may merge: a one-sided front that neither emits nor is a lamp, of an
+/// untextured face. (Elements along intersection and contact lines merge too, but never across
+/// the line: joined_outline.)
 bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e) {
     if (elements.has_twin(e) || max_channel(elements.emission[e]) > 0.0) return false;
     if (!elements.blocks(e)) return false;
-    if (!elements.cut_edges.empty() && elements.cut_edges[e] != 0) return false;
     return !textured(input, elements.polygon[e]);
 }
 
@@ -111,28 +113,43 @@ bool straight(const Vec3& a, const Vec3& b, const Vec3& c) {
     return glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= kStraightSine * lengths;
 }
 
-/// The outline without its straight corners.
-std::vector<Vec3> without_straight_corners(std::vector<Vec3> outline) {
-    for (std::size_t k = 0; k < outline.size() && outline.size() > 3;) {
-        const std::size_t n = outline.size();
-        if (straight(outline[(k + n - 1) % n], outline[k], outline[(k + 1) % n]))
-            outline.erase(outline.begin() + std::ptrdiff_t(k));
-        else
+/// An outline and its edges' cut flags (Region).
+struct Outline {
+    std::vector<Vec3> corners;
+    std::vector<uint8_t> cut;
+};
+
+/// The outline without its straight corners: the two edges at one become one, on a cut line if
+/// either was.
+Outline without_straight_corners(Outline outline) {
+    std::vector<Vec3>& p = outline.corners;
+    for (std::size_t k = 0; k < p.size() && p.size() > 3;) {
+        const std::size_t n = p.size(), before = (k + n - 1) % n;
+        if (!straight(p[before], p[k], p[(k + 1) % n])) {
             ++k;
+            continue;
+        }
+        outline.cut[before] |= outline.cut[k];
+        p.erase(p.begin() + std::ptrdiff_t(k));
+        outline.cut.erase(outline.cut.begin() + std::ptrdiff_t(k));
     }
     return outline;
 }
 
 /// The outline of regions a and b joined along a's edge from corner k, which is b's from corner m
-/// reversed, if it is a convex triangle or quad.
-std::optional<std::vector<Vec3>> joined_outline(const Region& a, int k, const Region& b, int m) {
-    const std::size_t na = a.corners.size(), nb = b.corners.size();
-    std::vector<Vec3> outline;
-    for (std::size_t i = 1; i <= na; ++i) outline.push_back(a.corners[(std::size_t(k) + i) % na]);  // a_{k+1} .. a_k
-    for (std::size_t i = 2; i < nb; ++i) outline.push_back(b.corners[(std::size_t(m) + i) % nb]);  // b_{m+2} .. b_{m-1}
+/// reversed, if that edge is on no cut line and the outline is a convex triangle or quad.
+std::optional<Outline> joined_outline(const Region& a, int k, const Region& b, int m) {
+    const std::size_t na = a.corners.size(), nb = b.corners.size(), ka = std::size_t(k), mb = std::size_t(m);
+    if (a.cut[ka] || b.cut[mb]) return std::nullopt;
+    // Corners a_{k+1} .. a_k, then b_{m+2} .. b_{m-1}; the edges from them a's k+1 .. k-1, then b's m+1 .. m-1.
+    Outline outline;
+    for (std::size_t i = 1; i <= na; ++i) outline.corners.push_back(a.corners[(ka + i) % na]);
+    for (std::size_t i = 2; i < nb; ++i) outline.corners.push_back(b.corners[(mb + i) % nb]);
+    for (std::size_t i = 1; i < na; ++i) outline.cut.push_back(a.cut[(ka + i) % na]);
+    for (std::size_t i = 1; i < nb; ++i) outline.cut.push_back(b.cut[(mb + i) % nb]);
     outline = without_straight_corners(std::move(outline));
-    if (outline.size() > 4) return std::nullopt;
-    std::vector<DVec3> points(outline.begin(), outline.end());
+    if (outline.corners.size() > 4) return std::nullopt;
+    std::vector<DVec3> points(outline.corners.begin(), outline.corners.end());
     if (!detail::is_convex(points, a.normal)) return std::nullopt;
     return outline;
 }
@@ -160,8 +177,11 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (!mergeable(elements, input, e)) continue;
         Region region;
-        for (int k = 0; k < elements.corner_count(e); ++k)
+        const unsigned bits = elements.cut_edges.empty() ? 0u : elements.cut_edges[e];
+        for (int k = 0; k < elements.corner_count(e); ++k) {
             region.corners.push_back(elements.vertices[elements.corners[e][k]]);
+            region.cut.push_back(uint8_t((bits >> k) & 1u));
+        }
         region.members.push_back(int32_t(e));
         region.normal = DVec3(elements.normal[e]);
         region.material = input.material != nullptr ? input.material[elements.polygon[e]] : 0;
@@ -176,7 +196,7 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
 /// convex and has the shortest longest edge within `size`.
 struct Partner {
     int32_t region = -1;
-    std::vector<Vec3> outline;
+    Outline outline;
     double longest = 0.0;
 };
 
@@ -189,9 +209,9 @@ Partner best_partner(const std::vector<Region>& regions, const EdgeMap& edges, c
         if (found == edges.end() || found->second.region < 0) continue;
         const std::size_t n = std::size_t(found->second.region);
         if (n == r || taken[n] || !alike(a, regions[n], kPlaneDistance * size)) continue;
-        const std::optional<std::vector<Vec3>> outline = joined_outline(a, int(k), regions[n], found->second.corner);
+        const std::optional<Outline> outline = joined_outline(a, int(k), regions[n], found->second.corner);
         if (!outline) continue;
-        const double longest = longest_edge(*outline);
+        const double longest = longest_edge(outline->corners);
         if (longest > size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
         best = {int32_t(n), *outline, longest};
     }
@@ -209,7 +229,8 @@ void merge_regions(std::vector<Region>& regions, double size) {
             Partner partner = best_partner(regions, edges, taken, r, size);
             if (partner.region < 0) continue;
             Region &a = regions[r], &b = regions[std::size_t(partner.region)];
-            a.corners = std::move(partner.outline);
+            a.corners = std::move(partner.outline.corners);
+            a.cut = std::move(partner.outline.cut);
             a.members.insert(a.members.end(), b.members.begin(), b.members.end());
             b.alive = false;
             taken[r] = taken[std::size_t(partner.region)] = 1;
@@ -245,7 +266,11 @@ public:
     void merged(const Region& region, std::size_t first) {
         const std::vector<Vec3>& p = region.corners;
         std::array<int32_t, 4> c{-1, -1, -1, -1};
-        for (std::size_t k = 0; k < p.size(); ++k) c[k] = vertex(p[k]);
+        uint8_t cut = 0;
+        for (std::size_t k = 0; k < p.size(); ++k) {
+            c[k] = vertex(p[k]);
+            cut |= uint8_t(region.cut[k] << k);
+        }
         const DVec3 a(p[0]), b(p[1]), d(p[2]);
         DVec3 centre = (a + b + d) / 3.0, twice_area = glm::cross(b - a, d - a);
         if (p.size() == 4) {  // the two triangles' centroids by area, as build_elements' quads
@@ -262,7 +287,7 @@ public:
         out_.polygon.push_back(output_.polygon[first]);
         out_.reflectance.push_back(output_.reflectance[first]);
         out_.emission.push_back(output_.emission[first]);
-        out_.cut_edges.push_back(0);
+        out_.cut_edges.push_back(cut);
         if (!output_.side.empty()) out_.side.push_back(Elements::kOneSided);
         if (!output_.lamp.empty()) out_.lamp.push_back(0);
     }

@@ -5,17 +5,16 @@
 /// A finely tessellated wall needs no more unknowns than a coarse one: light is smooth across it.
 /// build_elements splits large faces down to the element size but keeps every small face whole, so
 /// the solve would follow the tessellation. Here neighbouring elements that share a whole edge, lie
-/// in one plane and are the same surface (material, reflectance, no emission, no texture, no
-/// intersection or contact line on them) are merged, two at a time, as long as what they form is
-/// a convex triangle or quad no longer than the element size: a face grid merges into element-sized
-/// rectangles. This is the clustering of Smits, Arvo & Greenberg 1994 ("A clustering algorithm for
-/// radiosity in complex environments", SIGGRAPH) and Sillion 1995 ("A unified hierarchical
-/// algorithm for global illumination with scattering volumes and object clusters", IEEE TVCG),
-/// restricted to coplanar faces: such a cluster is itself a planar polygon, so hemi-cubes, the near
-/// field and every transport step treat it as an element and its form factors stay exact in the
-/// same sense as an element's. Unlike those papers the clusters are fixed before the solve (no
-/// refinement of a cluster into its faces where the light would need it): they are no larger than
-/// the element size the bake asks for, which is what the uniform bake resolves anyway.
+/// in one plane and are the same surface (material, reflectance, no emission, no texture; the edge
+/// between them on no intersection or contact line, Elements::cut_edges) are merged, two at a time,
+/// as long as what they form is a convex triangle or quad no longer than the element size: a face
+/// grid merges into element-sized rectangles. This is the clustering of Smits, Arvo & Greenberg 1994 ("A clustering
+/// algorithm for radiosity in complex environments", SIGGRAPH) and Sillion 1995 ("A unified hierarchical algorithm for
+/// global illumination with scattering volumes and object clusters", IEEE TVCG), restricted to coplanar faces: such a
+/// cluster is itself a planar polygon, so hemi-cubes, the near field and every transport step treat it as an element
+/// and its form factors stay exact in the same sense as an element's. Unlike those papers the clusters are fixed before
+/// the solve (no refinement of a cluster into its faces where the light would need it): they are no larger than the
+/// element size the bake asks for, which is what the uniform bake resolves anyway.
 #pragma once
 
 #include "geometry/scene.h"
@@ -27,8 +26,9 @@ namespace radiosity {
 
 /// The solve's elements and which of them each output element lies in.
 struct Clusters {
-    /// The solve's elements: merged convex triangles and quads, and every element that was not
-    /// merged (emitters, their back sides, textured faces, elements on cut lines) as it was. Emitting
+    /// The solve's elements: merged convex triangles and quads (their edges on cut lines marked in
+    /// cut_edges), and every element that was not merged (emitters, their back sides, textured
+    /// faces) as it was. Emitting
     /// fronts keep their order before the back sides, as build_elements orders them. Empty
     /// when nothing merged: the output's elements are the solve's.
     Elements elements;

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 namespace radiosity {
 namespace {
@@ -119,6 +120,42 @@ TEST(Clusters, UnlikeFacesStaySeparate) {
             EXPECT_GT(glm::dot(clusters.elements.normal[std::size_t(clusters.of_element[e])], build.elements.normal[e]),
                       0.9999f);
     }
+}
+
+/// A block standing on a finely tessellated floor: the contact cut runs through the floor's faces
+/// (its outline is off their grid). Elements along the cut merge, but no cluster reaches over it:
+/// each holds floor inside the footprint or outside it, never both.
+TEST(Clusters, ClustersNeverStraddleAContactLine) {
+    test::SceneArrays scene;
+    scene.add_grid(Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 1, 0), 32, Rgb(0.5));
+    const float lo = 0.3f, hi = 0.55f, top = 0.2f;
+    scene.add_quad({lo, lo, top}, {hi, lo, top}, {hi, hi, top}, {lo, hi, top}, Rgb(0.5));  // top, +z
+    scene.add_quad({lo, lo, 0}, {hi, lo, 0}, {hi, lo, top}, {lo, lo, top}, Rgb(0.5));      // -y side
+    scene.add_quad({hi, lo, 0}, {hi, hi, 0}, {hi, hi, top}, {hi, lo, top}, Rgb(0.5));      // +x side
+    scene.add_quad({hi, hi, 0}, {lo, hi, 0}, {lo, hi, top}, {hi, hi, top}, Rgb(0.5));      // +y side
+    scene.add_quad({lo, hi, 0}, {lo, lo, 0}, {lo, lo, top}, {lo, hi, top}, Rgb(0.5));      // -x side
+    const BuildResult build = build_elements(scene.input(), kSize, ElementLimits().with_contacts());
+    const Elements& output = build.elements;
+    const Clusters clusters = cluster_elements(output, scene.input(), kSize);
+    ASSERT_TRUE(clusters.merged());
+    auto under_block = [&](const Vec3& p) { return p.x > lo && p.x < hi && p.y > lo && p.y < hi; };
+    std::vector<int> inside(clusters.elements.size(), 0), outside(clusters.elements.size(), 0), members = inside;
+    std::size_t cut_elements = 0, merged_cut_elements = 0;
+    for (std::size_t e = 0; e < output.size(); ++e) {
+        if (output.centre[e].z > 1e-6f) continue;  // the floor only
+        const std::size_t s = std::size_t(clusters.of_element[e]);
+        (under_block(output.centre[e]) ? inside : outside)[s] += 1;
+        ++members[s];
+        if (output.cut_edges[e] != 0) ++cut_elements;
+    }
+    for (std::size_t e = 0; e < output.size(); ++e)
+        if (output.centre[e].z < 1e-6f && output.cut_edges[e] != 0 && members[std::size_t(clusters.of_element[e])] > 1)
+            ++merged_cut_elements;
+    for (std::size_t s = 0; s < clusters.elements.size(); ++s)
+        EXPECT_TRUE(inside[s] == 0 || outside[s] == 0) << s << ": " << inside[s] << " inside, " << outside[s];
+    std::printf("floor elements on the contact line: %zu, of which %zu merged\n", cut_elements, merged_cut_elements);
+    EXPECT_GT(cut_elements, 0u);
+    EXPECT_GT(merged_cut_elements, cut_elements / 2);
 }
 
 /// No element size (one element per polygon): nothing merges.
