@@ -86,6 +86,7 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     py::dict out;
     add_elements(planned.build, out);
     out["solve_elements"] = planned.solve_elements;
+    out["solve_element_area"] = to_numpy(planned.solve_element_area);
     out["matrix_bytes_bound"] = planned.matrix_bytes_bound;
     out["matrix_stored"] = planned.matrix_stored;
     return out;
@@ -160,7 +161,8 @@ void bind_bake(py::module_& m) {
     m.def("plan", &plan_arrays,
           "What bake() with the same arrays and settings will solve, without solving: its elements (element_vertices, "
           "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
-          "the hierarchy's patches), solve_elements (the unknowns: fewer than the elements where small ones merge), "
+          "the hierarchy's patches), solve_elements and solve_element_area (the unknowns and their areas: fewer than "
+          "the elements where small ones merge), "
           "matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
           "matrix_budget_bytes and are stored, else rendered on demand). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,

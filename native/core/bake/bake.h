@@ -153,7 +153,10 @@ struct BakePlan {
     /// The elements as bake() builds them (with the same cuts); the hierarchy's are its patches,
     /// one a polygon, which it refines.
     BuildResult build;
-    std::size_t solve_elements = 0;      ///< the unknowns: uniform bakes' merged elements (else build's elements)
+    std::size_t solve_elements = 0;  ///< the unknowns: uniform bakes' merged elements (else build's elements)
+    /// The unknowns' areas, square metres: what the hemi-cube's resolution must resolve (the
+    /// uniform bake's merged elements; else build's elements').
+    std::vector<float> solve_element_area;
     std::size_t matrix_bytes_bound = 0;  ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
     bool matrix_stored = false;          ///< uniform bakes: the bound fits the budget (media bakes always store)
 };

@@ -44,6 +44,7 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     result.seconds_solve = hierarchy.seconds_solve;
     result.seconds_interpolate = hierarchy.seconds_interpolate;
     result.hierarchy = hierarchy.stats;
+    result.solve_elements = result.build.elements.size();
     return result;
 }
 
@@ -83,16 +84,18 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     BakePlan plan;
     if (settings.hierarchical.enabled) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
-        plan.solve_elements = plan.build.elements.size();
+        plan.solve_element_area = plan.build.elements.area;
+        plan.solve_elements = plan.solve_element_area.size();
         return plan;
     }
     plan.build =
         with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
-    plan.solve_elements = plan.build.elements.size();
+    plan.solve_element_area = plan.build.elements.area;
     if (!with_media(settings)) {
         const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
-        if (clusters.merged()) plan.solve_elements = clusters.elements.size();
+        if (clusters.merged()) plan.solve_element_area = clusters.elements.area;
     }
+    plan.solve_elements = plan.solve_element_area.size();
     plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
     // The media bake always stores its matrix (or refuses to bake beyond the budget).
     plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.solve_elements, settings);
@@ -107,7 +110,6 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
         BakeResult result = detail::as_bake_result(std::move(hierarchy));
         if (settings.final_gather.enabled)
             detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
-        result.solve_elements = result.build.elements.size();
         return result;
     }
     if (with_media(settings)) {
