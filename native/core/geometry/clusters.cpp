@@ -11,6 +11,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <map>
 #include <optional>
 #include <unordered_map>
 
@@ -40,7 +42,17 @@ struct Region {
     DVec3 normal{0.0};
     int32_t material = 0;
     Rgb reflectance{0.0};
+    int32_t lattice = 0;  ///< its plane's Lattice
     bool alive = true;
+};
+
+/// A plane's lattice: two axes in it and the lowest coordinates of its regions' corners along them.
+/// Merging along an axis pairs the regions of even column (their lowest coordinate over their width)
+/// with the next: a grid of equal faces then merges into aligned rectangles, as a quadtree would,
+/// where pairing in any order leaves strips offset by a face that no longer join.
+struct Lattice {
+    std::array<DVec3, 2> axis;
+    std::array<double, 2> origin{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
 };
 
 bool textured(const SceneInput& input, int32_t face) {
@@ -170,6 +182,44 @@ bool alike(const Region& a, const Region& b, double plane_distance) {
     return true;
 }
 
+/// Two axes in the plane of normal n: the world axis least along n, made perpendicular to it, and n x that.
+std::array<DVec3, 2> plane_axes(const DVec3& n) {
+    const DVec3 a = std::abs(n.x) <= std::abs(n.y) && std::abs(n.x) <= std::abs(n.z) ? DVec3(1, 0, 0)
+                    : std::abs(n.y) <= std::abs(n.z)                                 ? DVec3(0, 1, 0)
+                                                                                     : DVec3(0, 0, 1);
+    const DVec3 u = glm::normalize(a - glm::dot(a, n) * n);
+    return {u, glm::cross(n, u)};
+}
+
+/// The lowest and highest coordinate of a region's corners along `axis`.
+std::array<double, 2> extent(const Region& region, const DVec3& axis) {
+    std::array<double, 2> range{std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+    for (const Vec3& p : region.corners) {
+        const double t = glm::dot(DVec3(p), axis);
+        range = {std::min(range[0], t), std::max(range[1], t)};
+    }
+    return range;
+}
+
+/// The lattices of the regions' planes (one a material, normal and plane offset, at `size` x
+/// kPlaneDistance), each region's index into them set.
+std::vector<Lattice> plane_lattices(std::vector<Region>& regions, double size) {
+    std::map<std::array<int64_t, 5>, int32_t> index;
+    std::vector<Lattice> lattices;
+    for (Region& region : regions) {
+        const DVec3 n = region.normal;
+        const double offset = glm::dot(n, DVec3(region.corners[0])) / (kPlaneDistance * size);
+        const std::array<int64_t, 5> key{region.material, std::llround(n.x * 1e4), std::llround(n.y * 1e4),
+                                         std::llround(n.z * 1e4), std::llround(offset)};
+        const auto [at, fresh] = index.try_emplace(key, int32_t(lattices.size()));
+        if (fresh) lattices.push_back({plane_axes(n)});
+        region.lattice = at->second;
+        Lattice& lattice = lattices[std::size_t(at->second)];
+        for (int a = 0; a < 2; ++a) lattice.origin[a] = std::min(lattice.origin[a], extent(region, lattice.axis[a])[0]);
+    }
+    return lattices;
+}
+
 /// One region per mergeable element; `region_of` -1 for the others.
 std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, std::vector<int32_t>& region_of) {
     std::vector<Region> regions;
@@ -192,51 +242,94 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
     return regions;
 }
 
-/// The best partner of region r this round: the alike, untaken neighbour whose joined outline is
-/// convex and has the shortest longest edge within `size`.
+/// A partner of region r this round, and what they form.
 struct Partner {
     int32_t region = -1;
     Outline outline;
     double longest = 0.0;
 };
 
-Partner best_partner(const std::vector<Region>& regions, const EdgeMap& edges, const std::vector<char>& taken,
-                     std::size_t r, double size) {
-    const Region& a = regions[r];
+/// What a round merges: triangles into quads, along one axis of the planes' lattices, or any pair.
+enum class Pairing { Triangles, AlongU, AlongV, Any };
+
+/// What the regions, their edges and this round's merges are.
+struct Round {
+    std::vector<Region>& regions;
+    const std::vector<Lattice>& lattices;
+    double size;
+    Pairing pairing;
+    EdgeMap edges;
+    std::vector<char> taken;
+};
+
+/// Whether region a may take b across a's edge k in this round's pairing: two triangles; along an
+/// axis, a of even column and b the next, as wide along it, across an edge perpendicular to it;
+/// any pair.
+bool pairs(const Round& round, const Region& a, std::size_t k, const Region& b) {
+    if (round.pairing == Pairing::Any) return true;
+    if (round.pairing == Pairing::Triangles) return a.corners.size() == 3 && b.corners.size() == 3;
+    if (a.corners.size() != 4 || b.corners.size() != 4) return false;
+    const Lattice& lattice = round.lattices[std::size_t(a.lattice)];
+    const int axis = round.pairing == Pairing::AlongU ? 0 : 1;
+    const DVec3 along = lattice.axis[std::size_t(axis)];
+    const std::array<double, 2> ra = extent(a, along), rb = extent(b, along);
+    const double width = ra[1] - ra[0], tolerance = 1e-3 * width;
+    if (!(width > 0.0) || std::llround((ra[0] - lattice.origin[std::size_t(axis)]) / width) % 2 != 0) return false;
+    const DVec3 edge = DVec3(a.corners[(k + 1) % 4]) - DVec3(a.corners[k]);
+    if (std::abs(glm::dot(edge, along)) > 1e-3 * glm::length(edge)) return false;
+    return std::abs(rb[0] - ra[1]) <= tolerance && std::abs(rb[1] - rb[0] - width) <= tolerance;
+}
+
+/// The partner of region r this round: the alike, untaken neighbour the pairing allows whose joined
+/// outline is convex and has the shortest longest edge within the size.
+Partner best_partner(const Round& round, std::size_t r) {
+    const Region& a = round.regions[r];
     Partner best;
     for (std::size_t k = 0; k < a.corners.size(); ++k) {
-        const auto found = edges.find(edge_key(a.corners[(k + 1) % a.corners.size()], a.corners[k]));
-        if (found == edges.end() || found->second.region < 0) continue;
+        const auto found = round.edges.find(edge_key(a.corners[(k + 1) % a.corners.size()], a.corners[k]));
+        if (found == round.edges.end() || found->second.region < 0) continue;
         const std::size_t n = std::size_t(found->second.region);
-        if (n == r || taken[n] || !alike(a, regions[n], kPlaneDistance * size)) continue;
-        const std::optional<Outline> outline = joined_outline(a, int(k), regions[n], found->second.corner);
+        const Region& b = round.regions[n];
+        if (n == r || round.taken[n] || !alike(a, b, kPlaneDistance * round.size) || !pairs(round, a, k, b)) continue;
+        const std::optional<Outline> outline = joined_outline(a, int(k), b, found->second.corner);
         if (!outline) continue;
         const double longest = longest_edge(outline->corners);
-        if (longest > size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
+        if (longest > round.size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
         best = {int32_t(n), *outline, longest};
     }
     return best;
 }
 
-/// Merges pairs of regions, each region at most once a round, until no pair merges.
-void merge_regions(std::vector<Region>& regions, double size) {
-    for (bool merged = true; merged;) {
-        merged = false;
-        const EdgeMap edges = edges_of(regions);
-        std::vector<char> taken(regions.size(), 0);
-        for (std::size_t r = 0; r < regions.size(); ++r) {
-            if (!regions[r].alive || taken[r]) continue;
-            Partner partner = best_partner(regions, edges, taken, r, size);
-            if (partner.region < 0) continue;
-            Region &a = regions[r], &b = regions[std::size_t(partner.region)];
-            a.corners = std::move(partner.outline.corners);
-            a.cut = std::move(partner.outline.cut);
-            a.members.insert(a.members.end(), b.members.begin(), b.members.end());
-            b.alive = false;
-            taken[r] = taken[std::size_t(partner.region)] = 1;
-            merged = true;
-        }
+/// One round: each region merges with at most one partner. Whether any merged.
+bool merge_round(std::vector<Region>& regions, const std::vector<Lattice>& lattices, double size, Pairing pairing) {
+    Round round{regions, lattices, size, pairing, edges_of(regions), std::vector<char>(regions.size(), 0)};
+    bool merged = false;
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        if (!regions[r].alive || round.taken[r]) continue;
+        Partner partner = best_partner(round, r);
+        if (partner.region < 0) continue;
+        Region &a = regions[r], &b = regions[std::size_t(partner.region)];
+        a.corners = std::move(partner.outline.corners);
+        a.cut = std::move(partner.outline.cut);
+        a.members.insert(a.members.end(), b.members.begin(), b.members.end());
+        b.alive = false;
+        round.taken[r] = round.taken[std::size_t(partner.region)] = 1;
+        merged = true;
     }
+    return merged;
+}
+
+/// Merges pairs of regions in rounds: triangles into quads, then along the lattices' axes in turn,
+/// then any pair that still can, until no pair merges.
+void merge_regions(std::vector<Region>& regions, double size) {
+    const std::vector<Lattice> lattices = plane_lattices(regions, size);
+    while (merge_round(regions, lattices, size, Pairing::Triangles)) {}
+    for (bool merged = true; merged;) {
+        const bool along_u = merge_round(regions, lattices, size, Pairing::AlongU);
+        const bool along_v = merge_round(regions, lattices, size, Pairing::AlongV);
+        merged = along_u || along_v;
+    }
+    while (merge_round(regions, lattices, size, Pairing::Any)) {}
 }
 
 /// Builds the solve elements: vertices shared by position.

@@ -63,9 +63,31 @@ TEST(Clusters, SubdividedSquareMergesToTheCoarseElements) {
     }
 }
 
-/// Each face cut into two triangles: pairs become quads, which merge as before (within a factor 2
-/// of the coarse count: a triangle may be left over at a cluster's edge).
-TEST(Clusters, TriangulatedSquareMergesToFewElements) {
+/// The faces in a scrambled order (a mesh's faces come in whatever order modelling left them):
+/// the clusters still follow the lattice of the element size, 16 of them.
+TEST(Clusters, ScrambledFacesMergeToTheCoarseElements) {
+    for (const int cells : {16, 32, 64}) {
+        test::SceneArrays grid;
+        grid.add_grid(Vec3(0.3f, -0.2f, 0.7f), Vec3(1, 0, 0), Vec3(0, 1, 0), cells, Rgb(0.5));
+        test::SceneArrays floor;
+        const int faces = cells * cells;
+        for (int i = 0; i < faces; ++i) {
+            const int f = int((std::int64_t(i) * 7919) % faces);  // 7919 is prime: a permutation
+            std::vector<Vec3> corners;
+            for (int c = grid.face_offsets[f]; c < grid.face_offsets[f + 1]; ++c) {
+                const float* p = &grid.positions[3 * std::size_t(grid.corner_vertices[std::size_t(c)])];
+                corners.emplace_back(p[0], p[1], p[2]);
+            }
+            floor.add_polygon(corners, Rgb(0.5), Rgb(0.0));
+        }
+        BuildResult build;
+        const Clusters clusters = clusters_of(floor, build);
+        EXPECT_EQ(clusters.elements.size(), 16u) << cells;
+    }
+}
+
+/// Each face cut into two triangles: pairs become quads, which merge as before.
+TEST(Clusters, TriangulatedSquareMergesToTheCoarseElements) {
     for (const int cells : {16, 32}) {
         test::SceneArrays floor;
         auto at = [&](int i, int j) { return Vec3(float(i) / float(cells), float(j) / float(cells), 0.0f); };
@@ -78,7 +100,7 @@ TEST(Clusters, TriangulatedSquareMergesToFewElements) {
         const Clusters clusters = clusters_of(floor, build);
         ASSERT_EQ(build.elements.size(), std::size_t(2 * cells * cells));
         ASSERT_TRUE(clusters.merged());
-        EXPECT_LE(clusters.elements.size(), 32u) << cells;
+        EXPECT_EQ(clusters.elements.size(), 16u) << cells;
         double area = 0.0;
         for (const float a : clusters.elements.area) area += a;
         EXPECT_NEAR(area, 1.0, 1e-5);
