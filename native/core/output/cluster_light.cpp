@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 
 namespace radiosity::detail {
 namespace {
@@ -97,6 +98,19 @@ std::vector<Rgb> inherited_emission(const Clusters& clusters, const std::vector<
         emission[e] += solve_emission[s] - solve_emitted[s];
     }
     return emission;
+}
+
+ProgressFn output_progress(const Clusters& clusters, const ProgressFn& progress) {
+    if (!clusters.merged() || !progress) return progress;
+    auto output = std::make_shared<std::vector<Rgb>>(clusters.of_element.size());
+    return [&clusters, progress, output](const Progress& p) {
+        if (p.radiance == nullptr || p.element_count != clusters.elements.size()) return progress(p);
+        for (std::size_t e = 0; e < output->size(); ++e) (*output)[e] = p.radiance[clusters.of_element[e]];
+        Progress report = p;
+        report.radiance = output->data();
+        report.element_count = output->size();
+        return progress(report);
+    };
 }
 
 }  // namespace radiosity::detail

@@ -24,4 +24,9 @@ std::vector<Rgb> inherited_radiance(const Elements& output, const Clusters& clus
 std::vector<Rgb> inherited_emission(const Clusters& clusters, const std::vector<Rgb>& emitted,
                                     const std::vector<Rgb>& solve_emission, const std::vector<Rgb>& solve_emitted);
 
+/// `progress` with the solve's radiance (Progress::radiance, one per solve element) given as the
+/// output elements', flat over each cluster: what plan() gave a preview to draw is the output's
+/// elements. `progress` itself when nothing merged.
+ProgressFn output_progress(const Clusters& clusters, const ProgressFn& progress);
+
 }  // namespace radiosity::detail

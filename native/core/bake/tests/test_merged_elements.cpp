@@ -109,6 +109,20 @@ TEST(MergedElements, TessellatedBoxSolvesTheCoarseBoxsUnknowns) {
     const std::vector<Rgb> reference_means = wall_means(coarse, reference.build.elements, reference.solve.radiance);
     for (const int cells : {8, 16, 32}) {
         const test::SceneArrays box = tessellated_box(cells);
+        // The solve's progress shows its light on the output's elements, which plan() gives a preview.
+        const std::size_t planned = plan(box.input(), settings(true, false)).build.elements.size();
+        std::size_t reports = 0;
+        const ProgressFn progress = [&](const Progress& p) {
+            if (p.radiance != nullptr) {
+                EXPECT_EQ(p.element_count, planned);
+                ++reports;
+            }
+            return true;
+        };
+        BakeSettings progressive = settings(true, false);
+        progressive.solve.method = Method::Progressive;
+        bake(box.input(), progressive, progress);
+        EXPECT_GT(reports, 0u);
         const BakeResult r = bake(box.input(), settings(true, false));
         EXPECT_EQ(r.solve_elements, reference.solve_elements) << cells;
         EXPECT_EQ(r.build.elements.size(), std::size_t(kWalls * cells * cells + 2 * 16)) << cells;
