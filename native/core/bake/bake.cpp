@@ -144,14 +144,15 @@ void light_of_sources(const SceneInput& input, const BakeSettings& settings, Uni
     const SmallEmitters small = light_from_small_emitters(elements, solve_emitted, settings, result, progress);
 
     const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
+    const ProgressFn solve_progress = output_progress(transport.clusters, progress);
     result.matrix_stored = transport.matrix_stored;
     if (transport.form_factors) {
         result.matrix_nonzeros = transport.form_factors->nonzeros();
         result.matrix_bytes = copies * transport.form_factors->bytes();
-        result.solve = solve(elements, *transport.form_factors, settings.solve, progress);
+        result.solve = solve(elements, *transport.form_factors, settings.solve, solve_progress);
     } else {
         HemicubeRows on_demand(elements, row_settings(settings));
-        result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
+        result.solve = solve(elements, on_demand, settings.solve, solve_progress);  // includes rendering rows
     }
     result.seconds_solve += result.solve.seconds;
     restore_small_emitters(elements, solve_emitted, small, result.solve);
