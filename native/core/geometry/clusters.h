@@ -7,15 +7,17 @@
 /// the solve would follow the tessellation. Here neighbouring elements that share a whole edge, lie
 /// in one plane and are the same surface (material, reflectance, no emission, no texture; the edge
 /// between them on no intersection or contact line, Elements::cut_edges) are merged, two at a time,
-/// as long as what they form is a convex triangle or quad no longer than the element size, in rounds
-/// (triangles into quads, then along each plane's lattice, then any pair that still can): a face grid
-/// in any order merges into aligned element-sized rectangles. This is the clustering of Smits, Arvo & Greenberg 1994
-/// ("A clustering algorithm for radiosity in complex environments", SIGGRAPH) and Sillion 1995 ("A unified hierarchical
-/// algorithm for global illumination with scattering volumes and object clusters", IEEE TVCG), restricted to coplanar
-/// faces: such a cluster is itself a planar polygon, so hemi-cubes, the near field and every transport step treat it as
-/// an element and its form factors stay exact in the same sense as an element's. Unlike those papers the clusters are
-/// fixed before the solve (no refinement of a cluster into its faces where the light would need it): they are no larger
-/// than the element size the bake asks for, which is what the uniform bake resolves anyway.
+/// as long as what they form is a convex triangle or quad no longer than the element size, in
+/// rounds (triangles into quads, then along each plane's lattice, then any pair that still can): a
+/// face grid in any order merges into aligned element-sized rectangles. This is the clustering of
+/// Smits, Arvo & Greenberg 1994 ("A clustering algorithm for radiosity in complex environments",
+/// SIGGRAPH) and Sillion 1995 ("A unified hierarchical algorithm for global illumination with
+/// scattering volumes and object clusters", IEEE TVCG), restricted to coplanar faces: such a
+/// cluster is itself a planar polygon, so hemi-cubes, the near field and every transport step treat
+/// it as an element and its form factors stay exact in the same sense as an element's. Unlike those
+/// papers the clusters are fixed before the solve (no refinement of a cluster into its faces where
+/// the light would need it): they are no larger than the element size the bake asks for, which is
+/// what the uniform bake resolves anyway.
 #pragma once
 
 #include "geometry/scene.h"
