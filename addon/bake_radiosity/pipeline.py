@@ -177,7 +177,8 @@ class BakeJob:
         power = media_energy.balance(r) if self.media.media else energy.balance(r)
         error = error_estimate.estimate(r, power)
         summary = {
-            "elements": r["elements"], "iterations": r["iterations"], "shots": r["shots"],
+            "elements": r["elements"], "solve_elements": r.get("solve_elements", r["elements"]),
+            "iterations": r["iterations"], "shots": r["shots"],
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
             "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,

@@ -117,6 +117,11 @@ class EngineTest(unittest.TestCase):
                   "s, light around corners 0.8 s, probes 0.3 s, output points 7.2 s, seams 1.7 s), writeback 0.3 s")
         self.assertEqual(summary.cost_line({"elements": 24, "seconds": {"solve": 1.0}}),
                          "Cost: 24 elements; solve 1.0 s")
+        # Small coplanar faces merged: the unknowns solved follow the elements.
+        self.assertEqual(summary.cost_line({"elements": 27648, "solve_elements": 1728, "seconds": {"solve": 1.0}}),
+                         "Cost: 27,648 elements (1,728 solved); solve 1.0 s")
+        self.assertEqual(summary.cost_line({"elements": 24, "solve_elements": 24, "seconds": {"solve": 1.0}}),
+                         "Cost: 24 elements; solve 1.0 s")
 
     def test_the_gathers_error_estimate_covers_the_furnaces_error(self):
         # Every inner corner's light is exactly E / (1 - rho); Medium gathers every corner.

@@ -217,6 +217,7 @@ BakeSettings bake_settings(const py::kwargs& given) {
     keywords.read("matrix_budget_bytes", settings.matrix_budget_bytes);
     keywords.read("near_field", settings.near_field.enabled);
     keywords.read("max_element_aspect", settings.limits.max_aspect);
+    keywords.read("merge_elements", settings.merge_elements);
     settings.limits.element_size = settings.element_size;  // the hierarchy's patches bound slivers by it too
     keywords.read("max_elements", settings.limits.max_elements);
     keywords.read("hemicube_rotations", settings.hemicube_rotations);
@@ -270,6 +271,7 @@ py::dict bake_result(const BakeResult& result) {
     out["residual"] = result.solve.residual;
     out["residual_history"] = result.solve.residual_history;
     out["converged"] = result.solve.converged;
+    out["solve_elements"] = result.solve_elements;
     out["matrix_stored"] = result.matrix_stored;
     out["matrix_nonzeros"] = result.matrix_nonzeros;
     out["matrix_bytes"] = result.matrix_bytes;

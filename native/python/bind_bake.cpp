@@ -85,6 +85,8 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     }
     py::dict out;
     add_elements(planned.build, out);
+    out["solve_elements"] = planned.solve_elements;
+    out["solve_element_area"] = to_numpy(planned.solve_element_area);
     out["matrix_bytes_bound"] = planned.matrix_bytes_bound;
     out["matrix_stored"] = planned.matrix_stored;
     return out;
@@ -131,7 +133,9 @@ void bind_bake(py::module_& m) {
           "cells per face edge, even), tolerance, max_iterations, hard_edge_angle, ambient, lights (list of dicts), "
           "world (None or an equirectangular (h, w, 3) map), world_samples, world_point_samples, "
           "matrix_budget_bytes; the stability settings near_field, over_relaxation (0: the core's), "
-          "max_element_aspect, max_elements, hemicube_rotations, direct_emitter_area; the final gather: "
+          "max_element_aspect, max_elements, hemicube_rotations, direct_emitter_area, merge_elements (uniform "
+          "methods: small coplanar elements merge into solve elements of up to element_size; default True); the "
+          "final gather: "
           "final_gather, gather_rays, gather_shadow_rays, gather_field_rays, gather_cache_accuracy (irradiance caching "
           "between output corners, Ward's a; 0: every corner gathers); the hierarchy: refine_tolerance, max_bytes; "
           "media: media "
@@ -143,7 +147,8 @@ void bind_bake(py::module_& m) {
           "elements (as plan() gives them; the hierarchy's leaves), corner_radiance, element_corner_radiance, "
           "element_radiance, element_emission, "
           "element_reflectance, corner_light and element_corner_light, iterations, shots, residual, "
-          "residual_history, converged, matrix_stored, matrix_nonzeros, matrix_bytes, seconds per phase, "
+          "residual_history, converged, solve_elements (the unknowns solved), matrix_stored, matrix_nonzeros, "
+          "matrix_bytes, seconds per phase, "
           "final_gather (points gathered, interpolated, buried, phases {field, wedges, probes, points, seams, other: "
           "{seconds, rays}} and what the error estimate reads: solution_light, indirect, variance, "
           "field_noise per corner, element_field_error and element_reflected per element) and direct_emitters when "
@@ -156,7 +161,9 @@ void bind_bake(py::module_& m) {
     m.def("plan", &plan_arrays,
           "What bake() with the same arrays and settings will solve, without solving: its elements (element_vertices, "
           "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
-          "the hierarchy's patches), matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
+          "the hierarchy's patches), solve_elements and solve_element_area (the unknowns and their areas: fewer than "
+          "the elements where small ones merge), "
+          "matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
           "matrix_budget_bytes and are stored, else rendered on demand). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "textures"_a = py::none());

@@ -165,7 +165,7 @@ def direct_emitter_area(layout, emitting, resolution, preset):
     area = layout["element_area"]
     bound = native.core().resolved_area(layout["element_vertices"], resolution, preset.cells)
     small = np.sort(area[emitting & (area < bound)])
-    most = DIRECT_EMITTER_PAIRS // max(1, len(area))
+    most = DIRECT_EMITTER_PAIRS // max(1, len(solved_areas(layout)))
     if len(small) > most:  # the largest of them go back to the hemi-cube
         bound = float(small[most]) if most > 0 else 0.0
         small = small[small < bound]
@@ -179,13 +179,13 @@ def preset_resolution(layout, emitting, preset, zonal=False):
     poorly light the elements directly instead (direct_emitter_area; not in the zonal bake).
     Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
-    area, vertices = layout["element_area"], layout["element_vertices"]
+    area, vertices, solved = layout["element_area"], layout["element_vertices"], solved_areas(layout)
     direct = (0.0, 0)
     if not zonal and emitting.any():
-        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(area, vertices, preset.cells),
+        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(solved, vertices, preset.cells),
                                      preset)
         emitting = emitting & ~(area < direct[0])
-    found = _resolution_for_groups(core, area, vertices, emitting, preset, zonal)
+    found = _resolution_for_groups(core, solved, area[emitting], vertices, preset, zonal)
     if not direct[1]:
         return found
     reason = found.reason + "; %d small emitting element%s light the scene directly" % (
@@ -193,8 +193,14 @@ def preset_resolution(layout, emitting, preset, zonal=False):
     return Resolution(found.resolution, found.rotations, reason, *direct)
 
 
-def _resolution_for_groups(core, area, vertices, emitting, preset, zonal):
-    groups = [("elements", area)] + ([("emitting elements", area[emitting])] if emitting.any() else [])
+def solved_areas(layout):
+    """The areas of the elements the solve has as unknowns: `_core.plan` merges small coplanar ones
+    (solve_element_area); a layout without them solves its elements."""
+    return layout.get("solve_element_area", layout["element_area"])
+
+
+def _resolution_for_groups(core, area, emitting_area, vertices, preset, zonal):
+    groups = [("elements", area)] + ([("emitting elements", emitting_area)] if len(emitting_area) else [])
     wanted = [(core.recommended_resolution(a, vertices, preset.cells), name, a) for name, a in groups]
     resolution, name, driving = max(wanted, key=lambda w: w[0])
     if resolution < MAX_RESOLUTION:
@@ -255,7 +261,7 @@ def _choose(settings, exported, media, size, preset, gathered):
     media_settings = {"media": list(media)} if zonal else {"max_element_aspect": max_element_aspect}
     layout = core.plan(*exported.scene_arrays(), front_only=exported.front_only, element_size=element_size,
                        **media_settings)
-    elements = int(layout["elements"])
+    elements, unknowns = int(layout["elements"]), int(layout.get("solve_elements", layout["elements"]))
     if preset is None:
         resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
         chosen = Resolution(resolution, 1, "set by hand (Custom)")
@@ -263,7 +269,7 @@ def _choose(settings, exported, media, size, preset, gathered):
         emitting = exported.emission[layout["element_polygon"]].max(axis=1) > 0.0
         chosen = preset_resolution(layout, emitting, preset, zonal)
     resolution = chosen.resolution
-    bound = int(core.matrix_bytes_bound(elements, resolution))
+    bound = int(core.matrix_bytes_bound(unknowns, resolution))
     budget = int(settings["memory_budget"]) * MEBIBYTE
     if preset is None and settings["method"] != "AUTO":
         method = CORE_METHODS[settings["method"]]

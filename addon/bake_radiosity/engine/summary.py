@@ -61,11 +61,15 @@ def gather_cost(final_gather):
 
 
 def cost_line(summary):
-    """What the bake cost and why, in words: its elements, the output points the final gather
+    """What the bake cost and why, in words: its elements (and the unknowns solved where small faces
+    merged into fewer), the output points the final gather
     gathered and those whose indirect light it interpolated between them, the rays it traced, and
     each phase's seconds (the gather's own phases in brackets); phases under 0.05 s are left out."""
     gather = summary.get("gather")
     parts = ["%s elements" % format(summary["elements"], ",")]
+    solved = summary.get("solve_elements", summary["elements"])
+    if solved < summary["elements"]:  # small coplanar faces merged: the unknowns the solve had
+        parts[0] += " (%s solved)" % format(solved, ",")
     if gather:
         points = "%s output points gathered, %s interpolated" % (format(gather["points"], ","),
                                                                  format(gather["interpolated"], ","))

@@ -3,6 +3,7 @@
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
+#include "output/cluster_light.h"
 #include "transport/small_emitters.h"
 
 #include <algorithm>
@@ -45,13 +46,14 @@ UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& 
     UniformTransport transport;
     auto start = Clock::now();
     transport.build = uniform_elements(input, settings, progress);
+    transport.clusters = uniform_clusters(transport.build.elements, input, settings);
     transport.emitted = transport.build.elements.emission;
     transport.seconds_elements = seconds_since(start);
-    transport.matrix_stored = stores_matrix(transport.build.elements.size(), settings);
+    transport.matrix_stored = stores_matrix(transport.solve_elements().size(), settings);
     if (!transport.matrix_stored) return transport;
     start = Clock::now();
     RowSettings rows = row_settings(settings);
-    transport.form_factors.emplace(compute_form_factors(transport.build.elements, rows, progress));
+    transport.form_factors.emplace(compute_form_factors(transport.solve_elements(), rows, progress));
     transport.seconds_form_factors = seconds_since(start);
     return transport;
 }
@@ -119,28 +121,44 @@ void restore_small_emitters(Elements& elements, const std::vector<Rgb>& emitted,
         elements.emission[e] -= elements.reflectance[e] * small.light[e];
 }
 
+/// The output's elements take the light solved over merged ones (cluster_light.h): `result`'s
+/// radiance becomes theirs, and their emission the one reported. `solve_emitted`: the solve
+/// elements' own emission.
+void inherit_light(const SceneInput& input, const BakeSettings& settings, UniformTransport& transport,
+                   const std::vector<Rgb>& emitted, const std::vector<Rgb>& solve_emitted, BakeResult& result) {
+    const Clusters& clusters = transport.clusters;
+    Elements& output = transport.build.elements;
+    result.solve.radiance =
+        inherited_radiance(output, clusters, result.solve.radiance, input.material, settings.hard_edge_angle);
+    output.emission = inherited_emission(clusters, emitted, clusters.elements.emission, solve_emitted);
+}
+
 }  // namespace
 
 void light_of_sources(const SceneInput& input, const BakeSettings& settings, UniformTransport& transport,
                       const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress) {
-    Elements& elements = transport.build.elements;
-    elements.emission = emitted;
+    Elements& elements = transport.solve_elements();
+    const std::vector<Rgb> solve_emitted = per_solve_element(transport.clusters, emitted);
+    elements.emission = solve_emitted;
     add_first_reflection(elements, settings, result, progress);
-    const SmallEmitters small = light_from_small_emitters(elements, emitted, settings, result, progress);
+    const SmallEmitters small = light_from_small_emitters(elements, solve_emitted, settings, result, progress);
 
     const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
+    const ProgressFn solve_progress = output_progress(transport.clusters, progress);
     result.matrix_stored = transport.matrix_stored;
     if (transport.form_factors) {
         result.matrix_nonzeros = transport.form_factors->nonzeros();
         result.matrix_bytes = copies * transport.form_factors->bytes();
-        result.solve = solve(elements, *transport.form_factors, settings.solve, progress);
+        result.solve = solve(elements, *transport.form_factors, settings.solve, solve_progress);
     } else {
         HemicubeRows on_demand(elements, row_settings(settings));
-        result.solve = solve(elements, on_demand, settings.solve, progress);  // includes rendering rows
+        result.solve = solve(elements, on_demand, settings.solve, solve_progress);  // includes rendering rows
     }
     result.seconds_solve += result.solve.seconds;
-    restore_small_emitters(elements, emitted, small, result.solve);
-    output_pass(input, settings, elements, emitted, result, progress);
+    restore_small_emitters(elements, solve_emitted, small, result.solve);
+    result.solve_elements = elements.size();
+    if (transport.clusters.merged()) inherit_light(input, settings, transport, emitted, solve_emitted, result);
+    output_pass(input, settings, transport.build.elements, emitted, result, progress);
 }
 
 BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {

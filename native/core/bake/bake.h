@@ -69,6 +69,10 @@ struct BakeSettings {
     float hard_edge_angle = 0.5235988f;  ///< radians (30 degrees)
     /// Element cap, sliver split, intersection and contact cuts (docs/stability.md).
     ElementLimits limits = ElementLimits().with_contacts();
+    /// Uniform bakes: the solve's elements are chosen by the element size, not the faces: small
+    /// coplanar elements of one surface merge into convex ones of up to `element_size`, whose light
+    /// the output's elements inherit (geometry/clusters.h). false: one unknown per output element.
+    bool merge_elements = true;
     /// Hemi-cubes per row at turned orientations, averaged (aliasing of small or distant
     /// elements; see RowSettings::rotations). 1 = a single hemi-cube (Cohen & Greenberg 1985).
     int hemicube_rotations = 1;
@@ -120,6 +124,8 @@ struct BakeResult {
     /// gather, the gathered output corners hold the light the gather found, whatever the colour.
     /// The hierarchy's adds, at each corner, the light its lamps, World and links bring there.
     CornerColors light_colors;
+    /// The unknowns solved: the uniform bake's merged elements (geometry/clusters.h), else build's.
+    std::size_t solve_elements = 0;
     bool matrix_stored = false;       ///< F stored (exact system) or rows rendered on demand
     std::size_t matrix_nonzeros = 0;  ///< 0 when rows were rendered on demand
     std::size_t matrix_bytes = 0;     ///< matrices held at once (progressive: F and F^T)
@@ -147,6 +153,10 @@ struct BakePlan {
     /// The elements as bake() builds them (with the same cuts); the hierarchy's are its patches,
     /// one a polygon, which it refines.
     BuildResult build;
+    std::size_t solve_elements = 0;  ///< the unknowns: uniform bakes' merged elements (else build's elements)
+    /// The unknowns' areas, square metres: what the hemi-cube's resolution must resolve (the
+    /// uniform bake's merged elements; else build's elements').
+    std::vector<float> solve_element_area;
     std::size_t matrix_bytes_bound = 0;  ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
     bool matrix_stored = false;          ///< uniform bakes: the bound fits the budget (media bakes always store)
 };

@@ -137,6 +137,7 @@ void add_layer(BakeResult& total, const BakeResult& layer, bool first) {
     add(total.solve, layer.solve, first);
     add(total.colors, layer.colors);
     add(total.light_colors, layer.light_colors);
+    total.solve_elements = layer.solve_elements;
     total.matrix_stored = layer.matrix_stored;
     total.matrix_nonzeros = layer.matrix_nonzeros;
     total.matrix_bytes = layer.matrix_bytes;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "bake/bake.h"
+#include "geometry/clusters.h"
 #include "transport/form_factors.h"
 
 #include <optional>
@@ -12,6 +13,10 @@ namespace radiosity::detail {
 /// The uniform bake's elements: at most `element_size`, cut along intersections and contacts.
 /// Progress phases as build_elements'.
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
+
+/// The uniform bake's solve elements over its output elements `elements` (geometry/clusters.h):
+/// small coplanar ones merged up to `element_size` when BakeSettings::merge_elements, else none.
+Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings);
 
 /// The media bake's elements: at most `element_size`, cut along intersections. The zonal exchange
 /// has no direct path for lamps (small_emitters.h): their quads stay in the factors, lit and
@@ -40,24 +45,31 @@ bool stores_matrix(std::size_t element_count, const BakeSettings& settings);
 /// over it (the light groups' layers, layers.h), and a caller may keep it between bakes of the same
 /// geometry and materials.
 struct UniformTransport {
-    BuildResult build;           ///< the elements; their emission is set by each light_of_sources
-    std::vector<Rgb> emitted;    ///< each element's own emission, as built from the input
+    BuildResult build;           ///< the output's elements; their emission is set by each light_of_sources
+    std::vector<Rgb> emitted;    ///< each output element's own emission, as built from the input
+    Clusters clusters;           ///< the solve's elements where small ones merged (BakeSettings::merge_elements)
     bool matrix_stored = false;  ///< F stored, else rendered on demand by each solve
-    std::optional<SparseMatrix> form_factors;
+    std::optional<SparseMatrix> form_factors;  ///< over the solve's elements
     double seconds_elements = 0.0, seconds_form_factors = 0.0;
+
+    /// The elements the form factors and the solve are over: the clusters', or the output's.
+    Elements& solve_elements() { return clusters.merged() ? clusters.elements : build.elements; }
 };
 
-/// The elements and, when stores_matrix, F (progress phases as build_elements' and compute_form_factors').
+/// The output's elements, the solve's (merged where BakeSettings::merge_elements) and, when
+/// stores_matrix, F over the solve's (progress phases as build_elements' and compute_form_factors').
 UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress);
 
 /// The hemi-cube rows' settings of a bake.
 RowSettings row_settings(const BakeSettings& settings);
 
-/// The light of some sources over `transport`: `emitted`, each element's own emission (zero where
-/// the sources do not emit), and the lamps and world of `settings`; lamps, world and small
-/// emitters shot first, then the solve, then the output pass. Fills `result`'s solve, corners,
-/// matrix counts and the seconds of those phases (added to what it holds); leaves the elements'
-/// emission as the result reports it (own emission plus the lamps' and world's first reflection).
+/// The light of some sources over `transport`: `emitted`, each output element's own emission (zero
+/// where the sources do not emit), and the lamps and world of `settings`; lamps, world and small
+/// emitters shot first, then the solve over the solve's elements, whose radiance and first
+/// reflection the output's elements inherit (output/cluster_light.h), then the output pass. Fills
+/// `result`'s solve, corners, solve_elements, matrix counts and the seconds of those phases (added
+/// to what it holds); leaves the output elements' emission as the result reports it (own emission
+/// plus the lamps' and world's first reflection).
 void light_of_sources(const SceneInput& input, const BakeSettings& settings, UniformTransport& transport,
                       const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress);
 

@@ -44,11 +44,16 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     result.seconds_solve = hierarchy.seconds_solve;
     result.seconds_interpolate = hierarchy.seconds_interpolate;
     result.hierarchy = hierarchy.stats;
+    result.solve_elements = result.build.elements.size();
     return result;
 }
 
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     return build_elements(input, settings.element_size, settings.limits, progress);
+}
+
+Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings) {
+    return cluster_elements(elements, input, settings.merge_elements ? settings.element_size : 0.0f);
 }
 
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {
@@ -79,13 +84,21 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     BakePlan plan;
     if (settings.hierarchical.enabled) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
+        plan.solve_element_area = plan.build.elements.area;
+        plan.solve_elements = plan.solve_element_area.size();
         return plan;
     }
     plan.build =
         with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
-    plan.matrix_bytes_bound = matrix_bytes_bound(plan.build.elements.size(), settings.resolution);
+    plan.solve_element_area = plan.build.elements.area;
+    if (!with_media(settings)) {
+        const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
+        if (clusters.merged()) plan.solve_element_area = clusters.elements.area;
+    }
+    plan.solve_elements = plan.solve_element_area.size();
+    plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
     // The media bake always stores its matrix (or refuses to bake beyond the budget).
-    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.build.elements.size(), settings);
+    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.solve_elements, settings);
     return plan;
 }
 
@@ -101,8 +114,10 @@ BakeResult bake(const SceneInput& input, const BakeSettings& settings, const Pro
     }
     if (with_media(settings)) {
         const MediaSettings& m = settings.media;
-        return as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress, m.grid_subdivision,
-                                              m.max_block_level));
+        BakeResult result = as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress,
+                                                           m.grid_subdivision, m.max_block_level));
+        result.solve_elements = result.build.elements.size();
+        return result;
     }
     return detail::bake_uniform(input, settings, progress);
 }

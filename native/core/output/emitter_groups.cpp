@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -16,25 +17,49 @@ namespace {
 
 /// Emitters of one polygon whose normals agree this well lie on one side of it.
 constexpr double kSamePlane = 0.9999;
+/// An emitter of another polygon joins a run when its corners lie this close to the run's plane,
+/// relative to the emitter's size (besides its normal and its radiance: run_takes).
+constexpr double kPlaneGap = 1e-4;
+
+/// A corner by its bits: neighbouring faces' elements meet at bit-identical points.
+using PointKey = std::array<float, 3>;
+PointKey key_of(const Vec3& p) { return {p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}; }
+
+/// Whether emitter `source` lies on the run's side: of its polygon and plane, or of another polygon
+/// in the same plane emitting the same radiance and meeting the run at a corner (a tessellated
+/// emitter, whose faces are polygons of their own).
+bool run_takes(const EmitterRun& run, const Emitter& first, const Emitter& source, const std::set<PointKey>& corners) {
+    if (glm::dot(first.normal, source.normal) < kSamePlane) return false;
+    if (first.polygon_index == source.polygon_index) return true;
+    if (source.radiance != first.radiance) return false;
+    const double gap = kPlaneGap * std::sqrt(source.area);
+    bool touches = false;
+    for (int k = 0; k < source.count; ++k) {
+        if (std::abs(glm::dot(run.normal, source.polygon[k] - run.point)) > gap) return false;
+        touches = touches || corners.count(key_of(Vec3(source.polygon[k]))) > 0;
+    }
+    return touches;
+}
 
 /// The run's outline, centre and radius: the directed edges of its elements whose reverse no other
 /// element of the run has (the tiles' shared edges cancel in the contour integral).
 void outline(const Elements& elements, const std::vector<Emitter>& emitters, EmitterRun& run) {
-    std::set<std::pair<int32_t, int32_t>> edges;
+    std::set<std::pair<PointKey, PointKey>> edges;
     std::size_t vertex_count = 0;
     for (std::size_t i = run.first; i < run.last; ++i) {
         const std::size_t e = std::size_t(emitters[i].element);
         const int count = elements.corner_count(e);
         for (int k = 0; k < count; ++k) {
-            const int32_t a = elements.corners[e][k], b = elements.corners[e][(k + 1) % count];
-            if (!edges.erase({b, a})) edges.insert({a, b});
-            run.centre += glm::dvec3(elements.vertices[a]);
+            const Vec3 &a = elements.vertices[elements.corners[e][k]],
+                       &b = elements.vertices[elements.corners[e][(k + 1) % count]];
+            if (!edges.erase({key_of(b), key_of(a)})) edges.insert({key_of(a), key_of(b)});
+            run.centre += glm::dvec3(a);
             ++vertex_count;
         }
     }
     run.centre /= double(std::max<std::size_t>(vertex_count, 1));
     for (const auto& [a, b] : edges) {
-        const glm::dvec3 pa(elements.vertices[a]), pb(elements.vertices[b]);
+        const glm::dvec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
         run.outline.push_back({pa, pb});
         run.radius = std::max({run.radius, glm::length(pa - run.centre), glm::length(pb - run.centre)});
     }
@@ -62,19 +87,21 @@ std::vector<Emitter> emitting_elements(const Elements& elements, const std::vect
 
 std::vector<EmitterRun> emitter_runs(const Elements& elements, const std::vector<Emitter>& emitters) {
     std::vector<EmitterRun> runs;
+    std::set<PointKey> corners;  // the last run's
     for (std::size_t i = 0; i < emitters.size(); ++i) {
         const Emitter& source = emitters[i];
-        if (runs.empty() || emitters[runs.back().first].polygon_index != source.polygon_index ||
-            glm::dot(emitters[runs.back().first].normal, source.normal) < kSamePlane) {
+        if (runs.empty() || !run_takes(runs.back(), emitters[runs.back().first], source, corners)) {
             EmitterRun run;
             run.first = i;
             run.normal = source.normal;
             run.point = source.polygon[0];
             runs.push_back(run);
+            corners.clear();
         }
         EmitterRun& run = runs.back();
         run.last = i + 1;
         run.uniform = run.uniform && source.radiance == emitters[run.first].radiance;
+        for (int k = 0; k < source.count; ++k) corners.insert(key_of(Vec3(source.polygon[k])));
     }
     for (EmitterRun& run : runs) outline(elements, emitters, run);
     return runs;

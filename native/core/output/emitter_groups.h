@@ -1,6 +1,6 @@
 /// @file emitter_groups.h
-/// @brief The final gather's emitting elements, grouped by the polygon side they tile, and their
-/// exact unoccluded light at a point (internal; final_gather.h).
+/// @brief The final gather's emitting elements, grouped by the polygon side (or coplanar faces) they
+/// tile, and their exact unoccluded light at a point (internal; final_gather.h).
 ///
 /// An emitting polygon is split into many elements, and a point's direct light needs each one's
 /// point-to-polygon factor (Lambert's contour integral, near_field.h): a scene whose emitters are
@@ -61,7 +61,9 @@ std::vector<Emitter> emitting_elements(const Elements& elements, const std::vect
 
 /// The runs of `emitters` that lie on one polygon's side: consecutive, of one input polygon, with
 /// normals within kSamePlane (a rotated polygon's elements differ in the last bits of their
-/// normals; its back side's are opposite).
+/// normals; its back side's are opposite). A tessellated emitter's faces are polygons of their own:
+/// the next polygon in the same plane, emitting the same and meeting the run at a corner, joins it,
+/// so its light at a point is one contour integral over the whole emitter's outline.
 std::vector<EmitterRun> emitter_runs(const Elements& elements, const std::vector<Emitter>& emitters);
 
 /// Each run's exact unoccluded light at `x` (normal `n`) and which of its emitters face x.

@@ -10,6 +10,7 @@
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
+#include "output/flat_places.h"
 #include "output/irradiance_cache.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
@@ -483,16 +484,18 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 /// interpolated solution: each vertex's direct light exact (shadow edges placed by shadow rays at
 /// the vertices, not by the hemi-cube's cells) and its indirect light from the solution one bounce
 /// further away, where the solution's error counts times the reflectance. Buried vertices keep
-/// their interpolated values.
+/// their interpolated values. A vertex at a flat place takes the light of its place's lowest vertex
+/// (flat_places.h: `same_place`), with its own element's reflectance and emission.
 template <typename PolygonCentre>
-void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<int32_t>& element_at,
+void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<Rgb>& emitted,
+                  const std::vector<int32_t>& element_at, const std::vector<int32_t>& same_place,
                   const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
                   const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field,
                   std::vector<PointStatistics>& statistics) {
     std::vector<int32_t> vertices;
     for (std::size_t v = 0; v < elements.vertices.size(); ++v)
-        if (element_at[v] >= 0) vertices.push_back(int32_t(v));
-    std::vector<Rgb> value(elements.vertices.size());
+        if (element_at[v] >= 0 && same_place[v] == int32_t(v)) vertices.push_back(int32_t(v));
+    std::vector<Rgb> value(elements.vertices.size()), light_at(elements.vertices.size());
     std::vector<uint8_t> done(elements.vertices.size(), 0);
     parallel_rows("gather field", vertices.size(), 16, 0, progress, [&](std::size_t t) {
         const std::size_t v = std::size_t(vertices[t]);
@@ -503,10 +506,18 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
                                  seam_share, direct, false, {nullptr, &statistics[v]}) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
+            light_at[v] = light;
             done[v] = 1;
         }
         return true;
     });
+    for (std::size_t v = 0; v < elements.vertices.size(); ++v) {
+        const std::size_t from = std::size_t(same_place[v]), e = std::size_t(std::max(element_at[v], 0));
+        if (from == v || element_at[v] < 0 || !done[from]) continue;
+        value[v] = emitted[e] + elements.reflectance[e] * light_at[from];
+        statistics[v] = statistics[from];
+        done[v] = 1;
+    }
     for (std::size_t e = 0; e < elements.size(); ++e)
         for (int k = 0; k < elements.corner_count(e); ++k) {
             const std::size_t v = std::size_t(elements.corners[e][k]);
@@ -829,6 +840,26 @@ void read_shared(const SharedLight& shared, const Elements& elements, const std:
     }
 }
 
+/// Per output point, the point whose direct light it takes: an interpolated point at a flat place
+/// (flat_places.h) the first interpolated point there (in the order of `gathered.points`); any other
+/// point itself.
+std::vector<std::size_t> shared_direct_light(const GatherPoints& gathered, const SharedLight& shared,
+                                             const std::vector<int32_t>& same_place) {
+    const std::vector<int32_t>& points = gathered.points;
+    std::vector<std::size_t> from(points.size());
+    std::vector<int64_t> first_at(same_place.size(), -1);  // per element vertex standing for a place
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        from[i] = i;
+        if (!shared.interpolated(i)) continue;
+        int64_t& first = first_at[std::size_t(same_place[std::size_t(points[i])])];
+        if (first < 0)
+            first = int64_t(i);
+        else
+            from[i] = std::size_t(first);
+    }
+    return from;
+}
+
 /// Output corners whose point, where Cycles bakes them, lies inside other geometry (a face running
 /// on under a wall, into a beam or a brush, or lying on another face) were gathered from a point
 /// moved to the visible side, which the field and the seams read, or not at all where every point
@@ -886,6 +917,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     const WorldSampler world_sampler(world);
     const PolygonCentres polygon_centre(elements);
     const std::vector<uint8_t> turning = turning_vertices(elements, place, places);
+    const std::vector<int32_t> same_place = flat_place_vertices(elements, place, places, seam, turning);
     PhaseMeter meter(visibility, back_sides);
     cost.other.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -904,8 +936,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
                                       field_settings, emitters, runs, visibility, back_sides, coincident, scene_size);
-        gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
-                     field_statistics);
+        gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
+                     progress, field, field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
         meter.add_to(cost.field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
@@ -958,6 +990,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                              visibility, back_sides, coincident, scene_size),
                     elements, gathered, approach, place, keep_vertex, settings.cache_accuracy, scene_size, progress);
     meter.add_to(cost.probes);
+    const std::vector<std::size_t> direct_from = shared_direct_light(gathered, shared, same_place);
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
@@ -969,8 +1002,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
             if (shared.interpolated(i)) {  // its direct light only; its indirect is read below
-                direct[i] =
-                    gatherer.direct_light(points[i], e, approach[std::size_t(points[i])], uint32_t(place[points[i]]));
+                if (direct_from[i] == i)
+                    direct[i] = gatherer.direct_light(points[i], e, approach[std::size_t(points[i])],
+                                                      uint32_t(place[points[i]]));
                 return true;
             }
             Rgb L, H;
@@ -991,7 +1025,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         });
         // The field at gathered vertices becomes their gathered light; next, the points whose rays
         // met a seam.
-        if (pass == 0) read_shared(shared, elements, emitted, gathered, p);
+        if (pass == 0) {
+            for (std::size_t i = 0; i < points.size(); ++i) direct[i] = direct[direct_from[i]];
+            read_shared(shared, elements, emitted, gathered, p);
+        }
         write_field(done);
         meter.add_to(pass == 0 ? cost.points : cost.seams);
         todo.clear();

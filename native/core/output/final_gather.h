@@ -63,9 +63,16 @@
 /// (irradiance_cache.h); which vertices gather is decided from 64 probe rays' hit distances and
 /// the normals, never from the light. Their direct light is gathered as everywhere.
 ///
+/// Flat places (flat_places.h): where the faces of one flat stretch of surface meet at a vertex away
+/// from seams, turning vertices and cut lines, each face has its own element vertex there, all at one
+/// point with one set of seeds; the field is gathered at the first of them and the others take its
+/// light (with their own reflectance), and the interpolated output points there take the first
+/// interpolated one's direct light.
+///
 /// Cost: per output vertex, `rays` rays, its share of `shadow_rays` and a contour integral per
-/// emitting polygon side; per seam vertex 4 x `field_rays` rays; per element vertex `field_rays`;
-/// per element corner at a turning vertex, 16 direct light estimates and 4 x 4 `field_rays` rays.
+/// emitting run (a polygon side, or a tessellated emitter's coplanar faces); per seam vertex 4 x
+/// `field_rays` rays; per element vertex (once a flat place) `field_rays`; per element corner at a
+/// turning vertex, 16 direct light estimates and 4 x 4 `field_rays` rays.
 #pragma once
 
 #include "output/final_gather_settings.h"

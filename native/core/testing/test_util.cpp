@@ -27,6 +27,14 @@ int32_t SceneArrays::add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, const Rgb& rho, co
     return add_polygon({a, b, c, d}, rho, emitted, material_id);
 }
 
+void SceneArrays::add_grid(const Vec3& origin, const Vec3& u, const Vec3& v, int cells, const Rgb& rho,
+                           const Rgb& emitted, int32_t material_id) {
+    auto at = [&](int i, int j) { return origin + u * (float(i) / float(cells)) + v * (float(j) / float(cells)); };
+    for (int i = 0; i < cells; ++i)
+        for (int j = 0; j < cells; ++j)
+            add_quad(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), rho, emitted, material_id);
+}
+
 std::vector<Rgb> fronts(const Elements& e, const std::vector<Rgb>& radiance) {
     std::vector<Rgb> out;
     for (std::size_t i = 0; i < e.size(); ++i)

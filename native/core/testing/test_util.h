@@ -23,6 +23,10 @@ struct SceneArrays {
     int32_t add_quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d, const Rgb& rho, const Rgb& emitted = Rgb(0),
                      int32_t material_id = 0);
     SceneInput input() const;
+    /// Adds the parallelogram origin + [0, 1] u + [0, 1] v as cells x cells quads, each with its own
+    /// vertices (as separate faces of a subdivided mesh), normal along u x v.
+    void add_grid(const Vec3& origin, const Vec3& u, const Vec3& v, int cells, const Rgb& rho,
+                  const Rgb& emitted = Rgb(0), int32_t material_id = 0);
 };
 
 /// Two unit squares facing each other, `distance` apart along z: the emitter (index 0) at z = distance
