@@ -10,6 +10,7 @@
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
+#include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
@@ -78,7 +79,8 @@ public:
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
              const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, const hr::Visibility* back_sides,
-             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr)
+             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr,
+             GatherHits* hits = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -91,6 +93,7 @@ public:
           back_sides_(back_sides),
           coincident_(coincident),
           wedges_(wedges),
+          hits_(hits),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -194,6 +197,7 @@ public:
         const Vec3 origin = lifted(out.position, elements_.normal[e]);
         const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
         uint32_t seed = mix_seed(place, 0x960BEU);
+        RecordedRays recorded(hits_, origin, elements_.normal[e], seed, grid, GatherHits::Kind::Probe);
         double inverse = 0.0;
         int hits = 0;
         out.nearest = far;
@@ -202,7 +206,8 @@ public:
             const double v = (double(i / grid) + next_jitter(seed)) / grid;
             const Vec3 direction(cosine_direction(n, t, b, u, v));
             // The fronts alone, whether or not they emit: which points gather may not depend on the light.
-            const hr::Visibility::Hit hit = visibility_.first_hit(origin, direction, 0.0f);
+            const hr::Visibility::Hit hit =
+                recorded.hit(i, [&] { return visibility_.first_hit(origin, direction, 0.0f); });
             const double distance = hit.patch < 0 ? double(far) : std::min(double(far), double(hit.distance));
             if (hit.patch >= 0) {
                 inverse += 1.0 / std::max(distance, 1e-12);
@@ -212,6 +217,7 @@ public:
             out.back_face |= hit.patch >= 0 && glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f;
         }
         out.harmonic_distance = hits > 0 ? double(hits) / inverse : double(far);
+        recorded.finish();
         return out;
     }
 
@@ -281,12 +287,14 @@ private:
         RaySpread spread(elements_, outputs.statistics, grid_);
         std::optional<GradientSamples> gradients;
         if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
+        RecordedRays recorded(hits_, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
             const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
             const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+            const hr::Visibility::Hit hit = recorded.hit(
+                i, [&] { return facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction); });
             if (hit.patch < 0) continue;
             if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
                 const Rgb wedge = wedge_light(hit);
@@ -307,6 +315,7 @@ private:
                 back_near += hit.distance < near;
             }
         }
+        recorded.finish();
         const bool buried = 2 * back_near > rays;
         if (buried && !even_buried) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
@@ -450,6 +459,7 @@ private:
     const hr::Visibility* back_sides_;  ///< the back sides alone (null: there are none)
     const CoincidentFaces& coincident_;
     const CornerWedges* wedges_;
+    GatherHits* hits_;  ///< recorded hits read and kept (null: every ray traced)
     float scene_size_;
     int grid_, shadow_rays_;
 };
@@ -862,7 +872,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                         const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                         const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                         float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                        const ProgressFn& progress, GatherStatistics* statistics) {
+                        const ProgressFn& progress, GatherStatistics* statistics, GatherHits* hits) {
     GatherCost cost;
     if (elements.size() == 0) return cost;
     const auto started = std::chrono::steady_clock::now();
@@ -903,7 +913,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size);
+                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size,
+                                      nullptr, hits);
         gather_field(field_gatherer, elements, element_at, approach, place, polygon_centre, progress, field,
                      field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
@@ -914,7 +925,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, runs, visibility, back_sides, coincident, scene_size);
+                                      emitters, runs, visibility, back_sides, coincident, scene_size, nullptr, hits);
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     }
@@ -955,16 +966,16 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     for (std::size_t v = 0; v < keep_vertex.size(); ++v) keep_vertex[v] |= turning[v];
     const SharedLight shared =
         share_light(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                             visibility, back_sides, coincident, scene_size),
+                             visibility, back_sides, coincident, scene_size, nullptr, hits),
                     elements, gathered, approach, place, keep_vertex, settings.cache_accuracy, scene_size, progress);
     meter.add_to(cost.probes);
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                visibility, back_sides, coincident, scene_size, &wedges);
+                                visibility, back_sides, coincident, scene_size, &wedges, hits);
         const Gatherer seam_gatherer(elements, emitted, radiance, field, lights, world_sampler, seam_settings, emitters,
-                                     runs, visibility, back_sides, coincident, scene_size, &wedges);
+                                     runs, visibility, back_sides, coincident, scene_size, &wedges, hits);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
@@ -1001,9 +1012,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
     read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
     meter.add_to(cost.seams);
-    bake_buried_corners_as_cycles(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings,
-                                           emitters, runs, visibility, back_sides, coincident, scene_size, &wedges),
-                                  gathered, moved, approach, place, progress, p);
+    bake_buried_corners_as_cycles(
+        Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs, visibility,
+                 back_sides, coincident, scene_size, &wedges, hits),
+        gathered, moved, approach, place, progress, p);
     meter.add_to(cost.points);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the
