@@ -140,7 +140,7 @@ void light_of_sources(const SceneInput& input, const BakeSettings& settings, Uni
     }
     result.seconds_solve += result.solve.seconds;
     restore_small_emitters(elements, emitted, small, result.solve);
-    output_pass(input, settings, elements, emitted, result, progress);
+    output_pass(input, settings, elements, emitted, result, progress, transport.gather_hits.get());
 }
 
 BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {

@@ -3,8 +3,10 @@
 #pragma once
 
 #include "bake/bake.h"
+#include "output/gather_hits.h"
 #include "transport/form_factors.h"
 
+#include <memory>
 #include <optional>
 
 namespace radiosity::detail {
@@ -36,14 +38,17 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings);
 bool stores_matrix(std::size_t element_count, const BakeSettings& settings);
 
 /// What the uniform bake builds before any source shines: the elements and, within the budget, their
-/// form factors. Light is linear in its sources, so one transport serves every set of sources lit
-/// over it (the light groups' layers, layers.h), and a caller may keep it between bakes of the same
-/// geometry and materials.
+/// form factors, and what the final gather's rays hit. Light is linear in its sources, so one
+/// transport serves every set of sources lit over it (the light groups' layers, layers.h), and a
+/// BakeCache keeps it between bakes of the same geometry (bake_cache.h).
 struct UniformTransport {
     BuildResult build;           ///< the elements; their emission is set by each light_of_sources
     std::vector<Rgb> emitted;    ///< each element's own emission, as built from the input
     bool matrix_stored = false;  ///< F stored, else rendered on demand by each solve
     std::optional<SparseMatrix> form_factors;
+    /// The gather's recorded hits, read and filled by every output pass over these elements (null:
+    /// each gather traces its rays).
+    std::unique_ptr<GatherHits> gather_hits;
     double seconds_elements = 0.0, seconds_form_factors = 0.0;
 };
 
