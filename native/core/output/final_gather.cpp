@@ -202,19 +202,23 @@ public:
         int hits = 0;
         out.nearest = far;
         for (int i = 0; i < grid * grid; ++i) {
-            const double u = (double(i % grid) + next_jitter(seed)) / grid;
-            const double v = (double(i / grid) + next_jitter(seed)) / grid;
-            const Vec3 direction(cosine_direction(n, t, b, u, v));
-            // The fronts alone, whether or not they emit: which points gather may not depend on the light.
-            const hr::Visibility::Hit hit =
-                recorded.hit(i, [&] { return visibility_.first_hit(origin, direction, 0.0f); });
+            bool meets_back = false;
+            const hr::Visibility::Hit hit = recorded.hit(i, meets_back, [&] {
+                const double u = (double(i % grid) + next_jitter(seed)) / grid;
+                const double v = (double(i / grid) + next_jitter(seed)) / grid;
+                const Vec3 direction(cosine_direction(n, t, b, u, v));
+                // The fronts alone, whether or not they emit: which points gather may not depend on the light.
+                const hr::Visibility::Hit traced = visibility_.first_hit(origin, direction, 0.0f);
+                return std::make_pair(traced,
+                                      traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) >= 0.0f);
+            });
             const double distance = hit.patch < 0 ? double(far) : std::min(double(far), double(hit.distance));
             if (hit.patch >= 0) {
                 inverse += 1.0 / std::max(distance, 1e-12);
                 ++hits;
             }
             out.nearest = std::min(out.nearest, distance);
-            out.back_face |= hit.patch >= 0 && glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f;
+            out.back_face |= meets_back;
         }
         out.harmonic_distance = hits > 0 ? double(hits) / inverse : double(far);
         recorded.finish();
@@ -290,13 +294,18 @@ private:
         RecordedRays recorded(hits_, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
-            const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
-            const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
-            const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = recorded.hit(
-                i, [&] { return facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction); });
+            bool meets_front = false;
+            const hr::Visibility::Hit hit = recorded.hit(i, meets_front, [&] {
+                const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
+                const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
+                const Vec3 direction(cosine_direction(n, t, b, u, v));
+                const hr::Visibility::Hit traced =
+                    facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+                return std::make_pair(traced,
+                                      traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f);
+            });
             if (hit.patch < 0) continue;
-            if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
+            if (meets_front) {
                 const Rgb wedge = wedge_light(hit);
                 const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
                 sum += seen;

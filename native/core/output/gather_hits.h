@@ -18,6 +18,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
@@ -74,7 +75,9 @@ private:
 };
 
 /// One ray set of a gather: its hits read where `hits` holds them, else traced one by one and kept
-/// by finish(). Without `hits`, every ray is traced.
+/// by finish(), each with one flag its tracer computed from the ray's direction (kept in the sign of
+/// its distance), so that a gather reading the hits needs no directions. Without `hits`, every ray
+/// is traced.
 class RecordedRays {
 public:
     RecordedRays(GatherHits* hits, const Vec3& origin, const Vec3& normal, uint32_t seed, int grid,
@@ -83,12 +86,22 @@ public:
         if (hits_ != nullptr) known_ = hits_->find(key_);
     }
 
-    /// Ray `i`'s hit (rays are asked for in order 0, 1, ...): recorded, or `trace()`.
+    /// Ray `i`'s hit and its flag (rays are asked for in order 0, 1, ...): recorded, or `trace()`,
+    /// which returns both.
     template <typename Trace>
-    hr::Visibility::Hit hit(int i, const Trace& trace) {
-        if (known_ != nullptr) return (*known_)[std::size_t(i)];
-        const hr::Visibility::Hit traced = trace();
-        if (hits_ != nullptr) traced_.push_back(traced);
+    hr::Visibility::Hit hit(int i, bool& flag, const Trace& trace) {
+        if (known_ != nullptr) {
+            hr::Visibility::Hit recorded = (*known_)[std::size_t(i)];
+            flag = std::signbit(recorded.distance);
+            recorded.distance = std::fabs(recorded.distance);
+            return recorded;
+        }
+        const auto [traced, traced_flag] = trace();
+        flag = traced_flag;
+        if (hits_ != nullptr) {
+            traced_.push_back(traced);
+            traced_.back().distance = std::copysign(traced.distance, flag ? -1.0f : 1.0f);
+        }
         return traced;
     }
 
