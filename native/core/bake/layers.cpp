@@ -173,7 +173,10 @@ LayeredBake hierarchical_layers(const SceneInput& input, const BakeSettings& set
                                 const ProgressFn& progress) {
     const HierarchySettings h = detail::hierarchy_settings(settings);
     RefinedHierarchy refined(input, h, progress);
-    GatherHits hits(settings.matrix_budget_bytes);  // the same leaves in every layer
+    // The same leaves in every layer: the first layer's gather records its hits, within what the
+    // nodes and links leave of the budget.
+    const std::size_t held = refined.refinement().stats.bytes;
+    GatherHits hits(held < settings.matrix_budget_bytes ? settings.matrix_budget_bytes - held : 0);
     LayeredBake layered;
     std::vector<Rgb> emission;
     for (int32_t k = 0; k < sources.count; ++k) {
