@@ -292,6 +292,8 @@ private:
         std::optional<GradientSamples> gradients;
         if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
         RecordedRays recorded(hits_, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
+        const GatherHits::Slots* known_slots =
+            reads != nullptr && hits_ != nullptr ? hits_->find_slots(recorded.key()) : nullptr;
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             bool meets_front = false;
@@ -315,7 +317,7 @@ private:
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
                     rest += wedge - emitted_[hit.patch];
-                    add_weights(hit, slots);
+                    if (known_slots == nullptr) add_weights(hit, slots);
                 } else {
                     rest += seen;
                 }
@@ -331,15 +333,18 @@ private:
         seam_share = float(at_seam) / float(rays);
         spread.finish(out, rays);
         if (gradients) *outputs.gradients = gradients->finish();
-        if (reads != nullptr) {
+        if (reads != nullptr && known_slots != nullptr) {
+            reads->slots = *known_slots;
+        } else if (reads != nullptr) {
             std::sort(slots.begin(), slots.end());
             reads->slots.clear();
             for (const auto& [slot, weight] : slots) {
                 if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
                 reads->slots.back().second += weight / double(rays);
             }
-            reads->indirect = rest / double(rays);
+            if (hits_ != nullptr) hits_->record_slots(recorded.key(), reads->slots);
         }
+        if (reads != nullptr) reads->indirect = rest / double(rays);
         return !buried;
     }
 

@@ -42,19 +42,39 @@ const std::vector<hr::Visibility::Hit>* GatherHits::find(const Key& key) const {
     return found == s.map.end() ? nullptr : &found->second;
 }
 
-void GatherHits::record(const Key& key, std::vector<hr::Visibility::Hit>&& hits) {
-    const std::size_t size = hits.size() * sizeof(hr::Visibility::Hit) + kSetOverhead;
+bool GatherHits::reserve(std::size_t size) {
     std::size_t held = bytes_.load(std::memory_order_relaxed);
     do {
         if (held + size > budget_bytes_) {
             full_.store(true, std::memory_order_relaxed);
-            return;
+            return false;
         }
     } while (!bytes_.compare_exchange_weak(held, held + size, std::memory_order_relaxed));
+    return true;
+}
+
+void GatherHits::record(const Key& key, std::vector<hr::Visibility::Hit>&& hits) {
+    const std::size_t size = hits.size() * sizeof(hr::Visibility::Hit) + kSetOverhead;
+    if (!reserve(size)) return;
     Shard& s = shard(key);
     const std::lock_guard<std::mutex> lock(s.mutex);
     hits.shrink_to_fit();
     if (!s.map.emplace(key, std::move(hits)).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
+}
+
+const GatherHits::Slots* GatherHits::find_slots(const Key& key) const {
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const auto found = s.slots.find(key);
+    return found == s.slots.end() ? nullptr : &found->second;
+}
+
+void GatherHits::record_slots(const Key& key, const Slots& slots) {
+    const std::size_t size = slots.size() * sizeof(Slots::value_type) + kSetOverhead;
+    if (!reserve(size)) return;
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    if (!s.slots.emplace(key, slots).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
 }
 
 }  // namespace radiosity

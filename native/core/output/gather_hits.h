@@ -51,6 +51,12 @@ public:
     /// Keeps `hits` as the hits of `key`, unless that would pass the budget (then `full` turns true).
     void record(const Key& key, std::vector<hr::Visibility::Hit>&& hits);
 
+    /// The field slots a ray set's rays met right at a seam read, each once with its summed weight
+    /// (final_gather.cpp's SeamReads), as the hits give them: kept beside the hits, within the budget.
+    using Slots = std::vector<std::pair<int32_t, double>>;
+    const Slots* find_slots(const Key& key) const;
+    void record_slots(const Key& key, const Slots& slots);
+
     std::size_t bytes() const { return bytes_.load(std::memory_order_relaxed); }
     /// Whether some ray set was left unrecorded for the budget.
     bool full() const { return full_.load(std::memory_order_relaxed); }
@@ -65,8 +71,11 @@ private:
     struct Shard {
         mutable std::mutex mutex;
         Map map;
+        std::unordered_map<Key, Slots, KeyHash> slots;
     };
     Shard& shard(const Key& key) const;
+    /// Counts `size` more bytes unless that would pass the budget (then false, and `full`).
+    bool reserve(std::size_t size);
 
     mutable std::array<Shard, kShards> shards_;
     std::size_t budget_bytes_;
@@ -109,6 +118,9 @@ public:
     void finish() {
         if (hits_ != nullptr && known_ == nullptr) hits_->record(key_, std::move(traced_));
     }
+
+    GatherHits* hits() const { return hits_; }
+    const GatherHits::Key& key() const { return key_; }
 
 private:
     GatherHits* hits_;
