@@ -10,9 +10,12 @@ Blender 3.x (the add-on installed from the zip; enabling it is not needed):
 
 or, with the path of this file:  blender -b scene.blend --python .../bake_radiosity/cli.py -- ...
 
-Bakes the file's active scene, saves it to --output (default: over the input file) and exits
-0; on any failure prints "Bake Radiosity failed: <reason>" to stderr and exits 1 (2 for
-arguments it cannot parse, with the usage).
+Bakes the file's active scene, or each --scene in turn, saves it to --output (default: over the
+input file) and exits 0. Scenes that show the same objects under other lamps, World or emission
+strengths (lighting variants, each writing its own Attribute Name) reuse the first one's geometry
+(elements, form factors, the final gather's rays) unless --no-reuse is given. On any failure prints
+"Bake Radiosity failed: <reason>" to stderr and exits 1 (2 for arguments it cannot parse, with the
+usage).
 """
 
 import argparse
@@ -24,7 +27,10 @@ def parse(argv):
     parser = argparse.ArgumentParser(prog="blender -b scene.blend --command bake_radiosity",
                                      description="Bake radiosity into colour attributes and save.")
     parser.add_argument("--output", help="where to save the baked file (default: overwrite the input)")
-    parser.add_argument("--scene", help="scene to bake (default: the file's active scene)")
+    parser.add_argument("--scene", action="append",
+                        help="scene to bake (default: the file's active scene); repeat it to bake several in turn")
+    parser.add_argument("--no-reuse", dest="reuse", action="store_false",
+                        help="bake every scene from scratch instead of reusing the previous bake's geometry")
     parser.add_argument("--quality", choices=("DRAFT", "MEDIUM", "HIGH", "CUSTOM"),
                         help="preset; naming --method, --resolution, --element-size or --tolerance alone means CUSTOM")
     parser.add_argument("--method", choices=("AUTO", "GAUSS_SEIDEL", "PROGRESSIVE", "JACOBI", "HIERARCHICAL"))
@@ -53,7 +59,8 @@ def parse(argv):
 
 def overrides_of(arguments):
     import math
-    overrides = {k: v for k, v in vars(arguments).items() if v is not None and k not in ("output", "scene")}
+    overrides = {k: v for k, v in vars(arguments).items()
+                 if v is not None and k not in ("output", "scene", "reuse")}
     if "hard_edge_angle" in overrides:
         overrides["hard_edge_angle"] = math.radians(overrides["hard_edge_angle"])
     return overrides
@@ -112,13 +119,14 @@ def _bake_and_save(arguments):
         addon_utils.enable(__package__, default_set=False, handle_error=_raise)
     pipeline = importlib.import_module(__package__ + ".pipeline")
 
-    scene = bpy.data.scenes[arguments.scene] if arguments.scene else bpy.context.scene
-    summary = pipeline.bake(scene, **overrides_of(arguments))
-    for warning in summary["warnings"]:
-        print("Bake Radiosity warning: %s" % warning, flush=True)
-    print("Bake Radiosity: %s" % scene.radiosity.last_report, flush=True)
-    print("Bake Radiosity: %s" % scene.radiosity.last_accuracy, flush=True)
-    print("Bake Radiosity: %s" % scene.radiosity.last_cost, flush=True)
+    scenes = [bpy.data.scenes[name] for name in arguments.scene] if arguments.scene else [bpy.context.scene]
+    for scene in scenes:
+        summary = pipeline.bake(scene, reuse=arguments.reuse, **overrides_of(arguments))
+        for warning in summary["warnings"]:
+            print("Bake Radiosity warning: %s" % warning, flush=True)
+        print("Bake Radiosity: %s: %s" % (scene.name, scene.radiosity.last_report), flush=True)
+        print("Bake Radiosity: %s" % scene.radiosity.last_accuracy, flush=True)
+        print("Bake Radiosity: %s" % scene.radiosity.last_cost, flush=True)
     output = arguments.output or bpy.data.filepath
     if not output:
         raise RuntimeError("no --output given and the scene was never saved")

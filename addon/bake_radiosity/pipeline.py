@@ -8,7 +8,7 @@ import time
 import bpy
 
 from . import export, facing, light_mix, linked, media_export, media_writeback, outliers, world, writeback
-from .engine import auto_settings, energy, error_estimate, faces, light_groups, media_energy, solve
+from .engine import auto_settings, bake_cache, energy, error_estimate, faces, light_groups, media_energy, solve
 from .engine import summary as summary_lines
 from .engine.errors import BakeError
 
@@ -50,8 +50,9 @@ def settings_of(scene, overrides=None):
 class BakeJob:
     """One bake: exported arrays, settings, and after `solve` the core's result."""
 
-    def __init__(self, scene, depsgraph, view_layer, overrides=None):
+    def __init__(self, scene, depsgraph, view_layer, overrides=None, reuse=True):
         self.settings = settings_of(scene, overrides)
+        self.reuse = reuse  # read and keep the session's bake cache (engine/bake_cache.py)
         with solve.core_errors_as_bake_errors():
             self._prepare(scene, depsgraph, view_layer)
             self.layers = self._light_group_layers(scene, view_layer)
@@ -130,6 +131,9 @@ class BakeJob:
             keywords["layers"] = self.layers.keyword()
             if self.method == "hierarchical":  # its nodes and links take what the layers leave of the budget
                 keywords["max_bytes"] = self.choice.budget_bytes - self.layer_bytes
+        cache = bake_cache.session_cache(self.reuse)
+        if cache is not None:
+            keywords["cache"] = cache
         self.result = solve.bake(self.exported, keywords, progress)
         self._fill_skipped_corners()
         self.warnings += self._skipped_warnings()
@@ -193,7 +197,7 @@ class BakeJob:
             "zone_size": self.media.zone_size, "media_files": media_files,
             "hierarchy": r.get("hierarchy"), "refine_tolerance": c.refine_tolerance,
             "world": self.world_summary(), "lit_by": self.lit_by(), "light_layers": self.layers_summary(),
-            "gather": summary_lines.gather_cost(r.get("final_gather")),
+            "gather": summary_lines.gather_cost(r.get("final_gather")), "cache": r.get("cache"),
             "warnings": list(self.warnings),
             # Every phase, so that their sum is the whole bake's time.
             "seconds": {"export": self.seconds_export, "world_map": self.world.seconds if self.world else 0.0,
@@ -255,9 +259,8 @@ def view_layer_and_depsgraph(scene):
     if context.scene == scene:
         return context.view_layer, context.evaluated_depsgraph_get()
     view_layer = scene.view_layers[0]
-    depsgraph = scene.view_layers[0].depsgraph
-    depsgraph.update()
-    return view_layer, depsgraph
+    view_layer.update()  # makes its depsgraph when the scene was never shown (a batch bake's other scenes)
+    return view_layer, view_layer.depsgraph
 
 
 def announce(text):
@@ -285,7 +288,7 @@ class ProgressPrinter:
         return True
 
 
-def bake(scene, **overrides):
+def bake(scene, reuse=True, **overrides):
     """Bakes `scene` now and returns a summary dict: elements, iterations, residual, converged,
     method and the settings chosen (quality, element_size, resolution, hemicube_rotations and
     resolution_reason, near_field, tolerance, matrix memory), the World's light baked (world: name,
@@ -294,7 +297,14 @@ def bake(scene, **overrides):
     energy (watts emitted, absorbed, lost, created), error_estimate (the typical relative error per
     corner, its relation and source, its parts from the gather: sampling, the solution's bias and the
     field's light; the solve's bound), warnings, and seconds per phase (export, form_factors, solve,
-    writeback).
+    writeback), and what it did with the session's bake cache (cache: reused, kept, bytes,
+    not_reused, not_kept; None with reuse=False).
+
+    `reuse` (default True): a bake of the same geometry as the session's previous bake (only lamps,
+    the World, emission strengths or material colours changed) reuses its elements, form factors and
+    the final gather's rays and gives the colours a bake from scratch gives; each bake keeps its own
+    for the next, within the Memory Budget (engine/bake_cache.py). reuse=False bakes from scratch
+    and lets go of what the cache held.
 
     `overrides` take any scene.radiosity setting by name for this bake only, e.g.
     bake(scene, quality="HIGH") or bake(scene, element_size=0.05, method="PROGRESSIVE"); naming
@@ -304,6 +314,6 @@ def bake(scene, **overrides):
     naming them before any work, since linked data is not saved with the file.
     """
     view_layer, depsgraph = view_layer_and_depsgraph(scene)
-    job = BakeJob(scene, depsgraph, view_layer, overrides)
+    job = BakeJob(scene, depsgraph, view_layer, overrides, reuse=reuse)
     job.solve(progress=ProgressPrinter(job.choice.tolerance) if bpy.app.background else None)
     return job.write(scene)

@@ -291,6 +291,15 @@ py::dict bake_result(const BakeResult& result) {
         seconds["zones"] = result.media->seconds_zones;
     }
     out["seconds"] = seconds;
+    if (result.cache) {
+        py::dict cache;
+        cache["reused"] = result.cache->reused;
+        cache["kept"] = result.cache->kept;
+        cache["bytes"] = result.cache->bytes;
+        cache["not_reused"] = result.cache->not_reused;
+        cache["not_kept"] = result.cache->not_kept;
+        out["cache"] = cache;
+    }
     return out;
 }
 

@@ -9,6 +9,7 @@
 #include "texture_arrays.h"
 
 #include "bake/bake.h"
+#include "bake/bake_cache.h"
 #include "visibility/resolution.h"
 
 #include <pybind11/stl.h>
@@ -46,8 +47,12 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     const TexturedScene scene(positions, face_offsets, corner_vertices, reflectance, emission, material, front_only,
                               textures);
     py::kwargs settings_keywords;
-    for (const auto& item : keywords)
-        if (py::str(item.first).cast<std::string>() != "layers") settings_keywords[item.first] = item.second;
+    for (const auto& item : keywords) {
+        const std::string name = py::str(item.first).cast<std::string>();
+        if (name != "layers" && name != "cache") settings_keywords[item.first] = item.second;
+    }
+    BakeCache* cache =
+        keywords.contains("cache") && !keywords["cache"].is_none() ? keywords["cache"].cast<BakeCache*>() : nullptr;
     const BakeSettings settings = bake_settings(settings_keywords);
     std::optional<LayerSources> layers;
     if (keywords.contains("layers") && !keywords["layers"].is_none())
@@ -60,9 +65,9 @@ py::dict bake_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     try {
         py::gil_scoped_release release;
         if (layers)
-            layered = bake_layers(scene.input, settings, *layers, reporter.function());
+            layered = bake_layers(scene.input, settings, *layers, reporter.function(), cache);
         else
-            result = bake(scene.input, settings, reporter.function());
+            result = bake(scene.input, settings, reporter.function(), cache);
     } catch (const Cancelled&) {
         reporter.rethrow_if_failed();
         throw;
@@ -124,6 +129,15 @@ double resolved_area_arrays(const Array<float>& element_vertices, int resolution
 
 void bind_bake(py::module_& m) {
     using namespace pybind11::literals;
+    py::class_<BakeCache>(m, "BakeCache",
+                          "What a uniform bake learned about the geometry (elements, form factors, the final gather's "
+                          "rays' hits), kept for the next bake of the same geometry: bake(..., cache=c) reads it when "
+                          "the geometry matches and leaves its own in it (the result's cache says which). Opaque; "
+                          "one bake at a time.")
+        .def(py::init<>())
+        .def_property_readonly("bytes", &BakeCache::bytes, "The bytes it holds; 0 when empty.")
+        .def_property_readonly("empty", &BakeCache::empty)
+        .def("clear", &BakeCache::clear, "Lets go of what it holds.");
     m.def("bake", &bake_arrays,
           "Bakes radiosity for a polygon soup given as flat arrays (see the add-on's export for the layout) by the "
           "pipeline the settings choose, and returns one dict whatever the method. The scene may carry textures "
@@ -140,7 +154,10 @@ void bind_bake(py::module_& m) {
           "between output corners, Ward's a; 0: every corner gathers); the hierarchy: refine_tolerance, max_bytes; "
           "media: media "
           "([{origin, voxel_size, extinction, albedo, emission (nz, ny, nx, 3)}]), zone_resolution, "
-          "grid_subdivision, merge_uniform_zones; light group layers: layers ({count, polygon: a layer per polygon, "
+          "grid_subdivision, merge_uniform_zones; cache (a BakeCache: the uniform methods reuse the elements, form "
+          "factors and gather's hits of its previous bake when the geometry matches, and keep theirs; the dict then "
+          "adds cache {reused, kept, bytes, not_reused, not_kept}); light group layers: layers ({count, polygon: a "
+          "layer per polygon, "
           "lamp: a layer per lights entry, world: its layer}, uniform methods only; the dict then adds layers, per "
           "layer corner_radiance, element_corner_radiance, corner_light, element_corner_light, element_radiance, "
           "element_emission, iterations, residual, converged, seconds, and the rest is their sum). The dict: the "

@@ -2,6 +2,8 @@
 
 import math
 
+from .bake_cache import cache_text
+
 METHOD_LABELS = {"gauss_seidel": "Gauss-Seidel", "jacobi": "Jacobi", "progressive": "progressive refinement",
                  "hierarchical": "hierarchical"}
 
@@ -64,7 +66,8 @@ def cost_line(summary):
     """What the bake cost and why, in words: its elements (and the unknowns solved where small faces
     merged into fewer), the output points the final gather
     gathered and those whose indirect light it interpolated between them, the rays it traced, and
-    each phase's seconds (the gather's own phases in brackets); phases under 0.05 s are left out."""
+    each phase's seconds (the gather's own phases in brackets); phases under 0.05 s are left out;
+    then whether it reused the previous bake's geometry (bake_cache.cache_text)."""
     gather = summary.get("gather")
     parts = ["%s elements" % format(summary["elements"], ",")]
     solved = summary.get("solve_elements", summary["elements"])
@@ -87,7 +90,9 @@ def cost_line(summary):
                      for part, phase in gather["phases"].items() if phase["seconds"] >= 0.05]
             text += " (%s)" % ", ".join(inner) if inner else ""
         phases.append(text)
-    return "Cost: %s; %s" % ("; ".join(parts), ", ".join(phases))
+    line = "Cost: %s; %s" % ("; ".join(parts), ", ".join(phases))
+    cache = cache_text(summary.get("cache"))
+    return "%s. %s" % (line, cache) if cache else line
 
 
 def accuracy_line(summary):

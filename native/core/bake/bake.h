@@ -35,9 +35,12 @@
 #include "transport/world.h"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace radiosity {
+
+class BakeCache;
 
 /// Hierarchical radiosity instead of uniform elements (hierarchy/hierarchy.h). It takes
 /// BakeSettings' element_size (the finest elements, > 0), solve tolerance and sweeps, hard edge
@@ -110,6 +113,16 @@ struct MediaResult {
     double seconds_zones = 0.0;
 };
 
+/// Whether a bake given a BakeCache read what the previous bake learned about the geometry, and
+/// whether the cache keeps what this one learned (bake_cache.h).
+struct CacheUse {
+    bool reused = false;     ///< the elements, form factors and the gather's hits of the previous bake
+    bool kept = false;       ///< the cache holds this bake's for the next
+    std::size_t bytes = 0;   ///< what the cache holds after the bake (0 when not kept)
+    std::string not_reused;  ///< why it was not reused ("" when it was)
+    std::string not_kept;    ///< why it was not kept ("" when it was)
+};
+
 struct BakeResult {
     BuildResult build;
     SolveResult solve;
@@ -145,6 +158,7 @@ struct BakeResult {
     /// its radiance, and the form factors' seconds are the links'.
     std::optional<HierarchyStats> hierarchy;
     std::optional<MediaResult> media;  ///< bakes with media; `build` and `solve` hold the surfaces
+    std::optional<CacheUse> cache;     ///< bakes given a BakeCache
 };
 
 /// What bake() will solve, before it solves: the same elements, and for the uniform methods the
@@ -170,7 +184,10 @@ std::size_t matrix_bytes_bound(std::size_t element_count, int resolution);
 BakePlan plan(const SceneInput& input, const BakeSettings& settings);
 
 /// Bakes by the pipeline the settings choose (see the top of this file). Progress phases and
-/// errors as each pipeline's; throws Cancelled.
-BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
+/// errors as each pipeline's; throws Cancelled. With `cache`, a uniform bake reuses what the cache's
+/// previous bake learned about the same geometry and leaves its own there (bake_cache.h); other
+/// methods empty it.
+BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {},
+                BakeCache* cache = nullptr);
 
 }  // namespace radiosity

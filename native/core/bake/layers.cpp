@@ -2,6 +2,7 @@
 /// @brief The light groups' layers over one shared transport, and their sum (layers.h).
 #include "bake/layers.h"
 
+#include "bake/cached_transport.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
@@ -173,6 +174,10 @@ LayeredBake hierarchical_layers(const SceneInput& input, const BakeSettings& set
                                 const ProgressFn& progress) {
     const HierarchySettings h = detail::hierarchy_settings(settings);
     RefinedHierarchy refined(input, h, progress);
+    // The same leaves in every layer: the first layer's gather records its hits, within what the
+    // nodes and links leave of the budget.
+    const std::size_t held = refined.refinement().stats.bytes;
+    GatherHits hits(held < settings.matrix_budget_bytes ? settings.matrix_budget_bytes - held : 0);
     LayeredBake layered;
     std::vector<Rgb> emission;
     for (int32_t k = 0; k < sources.count; ++k) {
@@ -181,7 +186,7 @@ LayeredBake hierarchical_layers(const SceneInput& input, const BakeSettings& set
         BakeResult& layer = layered.layers.emplace_back(detail::as_bake_result(std::move(lit)));
         const LayerInput layer_input(input, sources, k);
         detail::output_pass(layer_input.input(), layer_settings(settings, sources, k), layer.build.elements, emitted,
-                            layer, progress);
+                            layer, progress, &hits);
         add_layer(layered.total, layer, k == 0);
         layered.layer_emission.push_back(layer.build.elements.emission);
         add(emission, layer.build.elements.emission);
@@ -205,11 +210,34 @@ std::size_t layer_bytes_bound(std::size_t layers, std::size_t elements, std::siz
     return layers * (2 * corners + 2 * 4 * elements + 2 * elements) * sizeof(Rgb);
 }
 
+namespace {
+
+/// The transport the layers share: the cache's (cached_transport.h) or one of their own, with room
+/// for the gather's hits, which every layer after the first reads.
+detail::CachedTransport layers_transport(const SceneInput& input, const BakeSettings& settings, BakeCache* cache,
+                                         const ProgressFn& progress) {
+    if (cache != nullptr) return detail::acquire_transport(input, settings, *cache, progress);
+    detail::CachedTransport own;
+    own.transport = std::make_unique<detail::UniformTransport>(detail::uniform_transport(input, settings, progress));
+    detail::make_room_for_hits(*own.transport, settings);
+    return own;
+}
+
+}  // namespace
+
 LayeredBake bake_layers(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources,
-                        const ProgressFn& progress) {
+                        const ProgressFn& progress, BakeCache* cache) {
     check(input, settings, sources);
-    if (settings.hierarchical.enabled) return hierarchical_layers(input, settings, sources, progress);
-    detail::UniformTransport transport = detail::uniform_transport(input, settings, progress);
+    if (settings.hierarchical.enabled) {
+        LayeredBake layered = hierarchical_layers(input, settings, sources, progress);
+        if (cache != nullptr) {
+            cache->clear();
+            layered.total.cache = CacheUse{false, false, 0, detail::kHierarchyNotCached, detail::kHierarchyNotCached};
+        }
+        return layered;
+    }
+    detail::CachedTransport cached = layers_transport(input, settings, cache, progress);
+    detail::UniformTransport& transport = *cached.transport;
     LayeredBake layered;
     layered.total.seconds_elements = transport.seconds_elements;
     layered.total.seconds_form_factors = transport.seconds_form_factors;
@@ -224,8 +252,12 @@ LayeredBake bake_layers(const SceneInput& input, const BakeSettings& settings, c
         add(emission, transport.build.elements.emission);
         layer.gather_statistics.reset();  // the total's error estimate holds them
     }
-    transport.build.elements.emission = std::move(emission);
-    layered.total.build = std::move(transport.build);
+    layered.total.build = transport.build;
+    layered.total.build.elements.emission = std::move(emission);
+    if (cache != nullptr) {
+        detail::release_transport(cached, settings, *cache);
+        layered.total.cache = std::move(cached.use);
+    }
     return layered;
 }
 

@@ -53,8 +53,12 @@ std::size_t layer_bytes_bound(std::size_t layers, std::size_t elements, std::siz
 
 /// Bakes each layer of `sources` over one transport (see the top of this file). InputError for
 /// media, the hierarchical method without the final gather, or layer indices out of range.
-/// Progress phases as bake()'s, once for the transport and once per layer for the rest.
+/// Progress phases as bake()'s, once for the transport and once per layer for the rest. The final
+/// gather's indirect and probe rays are traced by the first layer and read by the others
+/// (gather_hits.h), so the layers' extra cost is their direct light, first shot, solve and the
+/// reading of the hits. With `cache`, the uniform layers reuse and keep what bake() with a cache
+/// does (bake_cache.h; total.cache says which).
 LayeredBake bake_layers(const SceneInput& input, const BakeSettings& settings, const LayerSources& sources,
-                        const ProgressFn& progress = {});
+                        const ProgressFn& progress = {}, BakeCache* cache = nullptr);
 
 }  // namespace radiosity

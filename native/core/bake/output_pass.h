@@ -4,6 +4,7 @@
 #pragma once
 
 #include "bake/bake.h"
+#include "output/gather_hits.h"
 
 namespace radiosity::detail {
 
@@ -13,7 +14,9 @@ namespace radiosity::detail {
 /// arriving. `elements` and `result.solve.radiance` are the solution (the uniform elements or the
 /// hierarchy's leaves); `emitted` each element's own emission, without the lamps' and the world's
 /// first reflection. Sets result.colors, light_colors and the gather's counts, statistics and time.
+/// `hits`: the gather's recorded hits over these elements, read and filled (gather_hits.h; null: none).
 void output_pass(const SceneInput& input, const BakeSettings& settings, const Elements& elements,
-                 const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress);
+                 const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress,
+                 GatherHits* hits = nullptr);
 
 }  // namespace radiosity::detail

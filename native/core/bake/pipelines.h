@@ -4,8 +4,10 @@
 
 #include "bake/bake.h"
 #include "geometry/clusters.h"
+#include "output/gather_hits.h"
 #include "transport/form_factors.h"
 
+#include <memory>
 #include <optional>
 
 namespace radiosity::detail {
@@ -41,15 +43,18 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings);
 bool stores_matrix(std::size_t element_count, const BakeSettings& settings);
 
 /// What the uniform bake builds before any source shines: the elements and, within the budget, their
-/// form factors. Light is linear in its sources, so one transport serves every set of sources lit
-/// over it (the light groups' layers, layers.h), and a caller may keep it between bakes of the same
-/// geometry and materials.
+/// form factors, and what the final gather's rays hit. Light is linear in its sources, so one
+/// transport serves every set of sources lit over it (the light groups' layers, layers.h), and a
+/// BakeCache keeps it between bakes of the same geometry (bake_cache.h).
 struct UniformTransport {
     BuildResult build;           ///< the output's elements; their emission is set by each light_of_sources
     std::vector<Rgb> emitted;    ///< each output element's own emission, as built from the input
     Clusters clusters;           ///< the solve's elements where small ones merged (BakeSettings::merge_elements)
     bool matrix_stored = false;  ///< F stored, else rendered on demand by each solve
     std::optional<SparseMatrix> form_factors;  ///< over the solve's elements
+    /// The gather's recorded hits, read and filled by every output pass over these elements (null:
+    /// each gather traces its rays).
+    std::unique_ptr<GatherHits> gather_hits;
     double seconds_elements = 0.0, seconds_form_factors = 0.0;
 
     /// The elements the form factors and the solve are over: the clusters', or the output's.

@@ -1,5 +1,7 @@
 /// @file plan_and_bake.cpp
 /// @brief plan() and bake(): the pipeline the settings choose, and its result in one shape.
+#include "bake/bake_cache.h"
+#include "bake/cached_transport.h"
 #include "bake/media_bake.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
@@ -102,23 +104,40 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     return plan;
 }
 
-BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+namespace {
+
+/// The hierarchical bake, and the output pass when it gathers.
+BakeResult bake_hierarchy(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
+    HierarchyResult hierarchy = bake_hierarchical(input, detail::hierarchy_settings(settings), progress);
+    const std::vector<Rgb> emitted = std::move(hierarchy.output_emitted);
+    BakeResult result = detail::as_bake_result(std::move(hierarchy));
+    if (settings.final_gather.enabled)
+        detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
+    return result;
+}
+
+/// A bake whose method keeps nothing in the cache: it empties the cache and says why.
+BakeResult not_cached(BakeResult&& result, BakeCache* cache, const char* why) {
+    if (cache == nullptr) return std::move(result);
+    cache->clear();
+    result.cache = CacheUse{false, false, 0, why, why};
+    return std::move(result);
+}
+
+}  // namespace
+
+BakeResult bake(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress, BakeCache* cache) {
     check(settings);
-    if (settings.hierarchical.enabled) {
-        HierarchyResult hierarchy = bake_hierarchical(input, detail::hierarchy_settings(settings), progress);
-        const std::vector<Rgb> emitted = std::move(hierarchy.output_emitted);
-        BakeResult result = detail::as_bake_result(std::move(hierarchy));
-        if (settings.final_gather.enabled)
-            detail::output_pass(input, settings, result.build.elements, emitted, result, progress);
-        return result;
-    }
+    if (settings.hierarchical.enabled)
+        return not_cached(bake_hierarchy(input, settings, progress), cache, detail::kHierarchyNotCached);
     if (with_media(settings)) {
         const MediaSettings& m = settings.media;
         BakeResult result = as_bake_result(bake_with_media(input, m.media, settings, m.zone_resolution, progress,
                                                            m.grid_subdivision, m.max_block_level));
         result.solve_elements = result.build.elements.size();
-        return result;
+        return not_cached(std::move(result), cache, detail::kMediaNotCached);
     }
+    if (cache != nullptr) return detail::bake_uniform_cached(input, settings, *cache, progress);
     return detail::bake_uniform(input, settings, progress);
 }
 

@@ -11,6 +11,7 @@
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
 #include "output/flat_places.h"
+#include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
@@ -79,7 +80,8 @@ public:
              const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
              const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
              const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, const hr::Visibility* back_sides,
-             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr)
+             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr,
+             GatherHits* hits = nullptr)
         : elements_(elements),
           emitted_(emitted),
           radiance_(radiance),
@@ -92,6 +94,7 @@ public:
           back_sides_(back_sides),
           coincident_(coincident),
           wedges_(wedges),
+          hits_(hits),
           scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
@@ -195,24 +198,31 @@ public:
         const Vec3 origin = lifted(out.position, elements_.normal[e]);
         const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
         uint32_t seed = mix_seed(place, 0x960BEU);
+        RecordedRays recorded(hits_, origin, elements_.normal[e], seed, grid, GatherHits::Kind::Probe);
         double inverse = 0.0;
         int hits = 0;
         out.nearest = far;
         for (int i = 0; i < grid * grid; ++i) {
-            const double u = (double(i % grid) + next_jitter(seed)) / grid;
-            const double v = (double(i / grid) + next_jitter(seed)) / grid;
-            const Vec3 direction(cosine_direction(n, t, b, u, v));
-            // The fronts alone, whether or not they emit: which points gather may not depend on the light.
-            const hr::Visibility::Hit hit = visibility_.first_hit(origin, direction, 0.0f);
+            bool meets_back = false;
+            const hr::Visibility::Hit hit = recorded.hit(i, meets_back, [&] {
+                const double u = (double(i % grid) + next_jitter(seed)) / grid;
+                const double v = (double(i / grid) + next_jitter(seed)) / grid;
+                const Vec3 direction(cosine_direction(n, t, b, u, v));
+                // The fronts alone, whether or not they emit: which points gather may not depend on the light.
+                const hr::Visibility::Hit traced = visibility_.first_hit(origin, direction, 0.0f);
+                return std::make_pair(traced,
+                                      traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) >= 0.0f);
+            });
             const double distance = hit.patch < 0 ? double(far) : std::min(double(far), double(hit.distance));
             if (hit.patch >= 0) {
                 inverse += 1.0 / std::max(distance, 1e-12);
                 ++hits;
             }
             out.nearest = std::min(out.nearest, distance);
-            out.back_face |= hit.patch >= 0 && glm::dot(direction, elements_.normal[hit.patch]) >= 0.0f;
+            out.back_face |= meets_back;
         }
         out.harmonic_distance = hits > 0 ? double(hits) / inverse : double(far);
+        recorded.finish();
         return out;
     }
 
@@ -282,14 +292,23 @@ private:
         RaySpread spread(elements_, outputs.statistics, grid_);
         std::optional<GradientSamples> gradients;
         if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
+        RecordedRays recorded(hits_, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
+        const GatherHits::Slots* known_slots =
+            reads != nullptr && hits_ != nullptr ? hits_->find_slots(recorded.key()) : nullptr;
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
-            const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
-            const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
-            const Vec3 direction(cosine_direction(n, t, b, u, v));
-            const hr::Visibility::Hit hit = facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+            bool meets_front = false;
+            const hr::Visibility::Hit hit = recorded.hit(i, meets_front, [&] {
+                const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
+                const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
+                const Vec3 direction(cosine_direction(n, t, b, u, v));
+                const hr::Visibility::Hit traced =
+                    facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+                return std::make_pair(traced,
+                                      traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f);
+            });
             if (hit.patch < 0) continue;
-            if (glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) {
+            if (meets_front) {
                 const Rgb wedge = wedge_light(hit);
                 const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
                 sum += seen;
@@ -299,7 +318,7 @@ private:
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
                     rest += wedge - emitted_[hit.patch];
-                    add_weights(hit, slots);
+                    if (known_slots == nullptr) add_weights(hit, slots);
                 } else {
                     rest += seen;
                 }
@@ -308,21 +327,25 @@ private:
                 back_near += hit.distance < near;
             }
         }
+        recorded.finish();
         const bool buried = 2 * back_near > rays;
         if (buried && !even_buried) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
         spread.finish(out, rays);
         if (gradients) *outputs.gradients = gradients->finish();
-        if (reads != nullptr) {
+        if (reads != nullptr && known_slots != nullptr) {
+            reads->slots = *known_slots;
+        } else if (reads != nullptr) {
             std::sort(slots.begin(), slots.end());
             reads->slots.clear();
             for (const auto& [slot, weight] : slots) {
                 if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
                 reads->slots.back().second += weight / double(rays);
             }
-            reads->indirect = rest / double(rays);
+            if (hits_ != nullptr) hits_->record_slots(recorded.key(), reads->slots);
         }
+        if (reads != nullptr) reads->indirect = rest / double(rays);
         return !buried;
     }
 
@@ -451,6 +474,7 @@ private:
     const hr::Visibility* back_sides_;  ///< the back sides alone (null: there are none)
     const CoincidentFaces& coincident_;
     const CornerWedges* wedges_;
+    GatherHits* hits_;  ///< recorded hits read and kept (null: every ray traced)
     float scene_size_;
     int grid_, shadow_rays_;
 };
@@ -893,7 +917,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                         const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                         const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                         float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                        const ProgressFn& progress, GatherStatistics* statistics) {
+                        const ProgressFn& progress, GatherStatistics* statistics, GatherHits* hits) {
     GatherCost cost;
     if (elements.size() == 0) return cost;
     const auto started = std::chrono::steady_clock::now();
@@ -935,7 +959,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size);
+                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size,
+                                      nullptr, hits);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
@@ -946,7 +971,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
         const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, runs, visibility, back_sides, coincident, scene_size);
+                                      emitters, runs, visibility, back_sides, coincident, scene_size, nullptr, hits);
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     }
@@ -987,7 +1012,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     for (std::size_t v = 0; v < keep_vertex.size(); ++v) keep_vertex[v] |= turning[v];
     const SharedLight shared =
         share_light(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                             visibility, back_sides, coincident, scene_size),
+                             visibility, back_sides, coincident, scene_size, nullptr, hits),
                     elements, gathered, approach, place, keep_vertex, settings.cache_accuracy, scene_size, progress);
     meter.add_to(cost.probes);
     const std::vector<std::size_t> direct_from = shared_direct_light(gathered, shared, same_place);
@@ -995,9 +1020,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                visibility, back_sides, coincident, scene_size, &wedges);
+                                visibility, back_sides, coincident, scene_size, &wedges, hits);
         const Gatherer seam_gatherer(elements, emitted, radiance, field, lights, world_sampler, seam_settings, emitters,
-                                     runs, visibility, back_sides, coincident, scene_size, &wedges);
+                                     runs, visibility, back_sides, coincident, scene_size, &wedges, hits);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
@@ -1038,9 +1063,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
     read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
     meter.add_to(cost.seams);
-    bake_buried_corners_as_cycles(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings,
-                                           emitters, runs, visibility, back_sides, coincident, scene_size, &wedges),
-                                  gathered, moved, approach, place, progress, p);
+    bake_buried_corners_as_cycles(
+        Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs, visibility,
+                 back_sides, coincident, scene_size, &wedges, hits),
+        gathered, moved, approach, place, progress, p);
     meter.add_to(cost.points);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the

@@ -77,6 +77,7 @@
 
 #include "output/final_gather_settings.h"
 #include "output/gather_cost.h"
+#include "output/gather_hits.h"
 #include "output/gather_statistics.h"
 #include "output/interpolation.h"
 #include "transport/lights.h"
@@ -93,11 +94,13 @@ namespace radiosity::detail {
 /// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
 /// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
 /// each later pass; throws Cancelled. `statistics`, if given, takes what the gather found at the
-/// output corners besides their colours (gather_statistics.h).
+/// output corners besides their colours (gather_statistics.h). `hits`, if given, holds the indirect
+/// and probe rays' hits of earlier gathers over the same elements (gather_hits.h): those are read
+/// instead of traced, the others traced and kept, and the colours are the same to the bit.
 GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
                         const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                         const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                         float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                        const ProgressFn& progress, GatherStatistics* statistics = nullptr);
+                        const ProgressFn& progress, GatherStatistics* statistics = nullptr, GatherHits* hits = nullptr);
 
 }  // namespace radiosity::detail

@@ -28,6 +28,20 @@ void GradientSamples::add(int ray, const Rgb& sample, double distance) {
 LightGradients GradientSamples::finish() const {
     const int m = grid_, n = grid_;
     const double pi = M_PI;
+    // Per polar stratum j (the same at every azimuth): the factors its samples' terms take.
+    struct Stratum {
+        double rotation;      ///< tan theta_j
+        double towards_pole;  ///< across theta_{j-}: (2 pi / n) sin theta_{j-} cos^2 theta_{j-}
+        double across_phi;    ///< across phi_k: cos theta_j (cos theta_{j-} - cos theta_{j+}) / sin theta_j
+    };
+    std::vector<Stratum> strata(static_cast<std::size_t>(m));
+    for (int j = 0; j < m; ++j) {
+        const double sin2 = (j + 0.5) / m, sin_j = std::sqrt(sin2), cos_j = std::sqrt(1.0 - sin2);
+        const double sin_low = std::sqrt(double(j) / m), cos2_low = 1.0 - double(j) / m;
+        const double cos_low = std::sqrt(1.0 - double(j) / m), cos_high = std::sqrt(1.0 - double(j + 1) / m);
+        strata[std::size_t(j)] = {sin_j / cos_j, (2.0 * pi / n) * sin_low * cos2_low,
+                                  cos_j * (cos_low - cos_high) / sin_j};
+    }
     glm::dvec3 rotation[3] = {}, translation[3] = {};
     auto at = [&](int j, int k) { return std::size_t(k) * std::size_t(m) + std::size_t(j); };
     auto in_plane = [&](double phi) { return std::cos(phi) * t_ + std::sin(phi) * b_; };
@@ -39,20 +53,18 @@ LightGradients GradientSamples::finish() const {
         const glm::dvec3 u = in_plane(phi), v = in_plane(phi + 0.5 * pi), v_low = in_plane(phi_low + 0.5 * pi);
         const int previous = (k + n - 1) % n;
         for (int j = 0; j < m; ++j) {
-            const double sin2 = (j + 0.5) / m, sin_j = std::sqrt(sin2), cos_j = std::sqrt(1.0 - sin2);
+            const Stratum& s = strata[std::size_t(j)];
             const Rgb& L = sample_[at(j, k)];
             // Rotation: each sample's cosine turns by (n x omega) / cos theta = tan theta v_k.
-            add(rotation, v, (sin_j / cos_j) * L);
+            add(rotation, v, s.rotation * L);
             // Translation across the stratum's boundary towards the pole (theta_{j-}), then across
             // the one at phi_k (Ward & Heckbert 1992), each by the nearer of the two hits.
             if (j > 0) {
                 const double inverse = std::max(distance_[at(j, k)], distance_[at(j - 1, k)]);
-                const double sin_low = std::sqrt(double(j) / m), cos2_low = 1.0 - double(j) / m;
-                add(translation, u, (2.0 * pi / n) * sin_low * cos2_low * inverse * (L - sample_[at(j - 1, k)]));
+                add(translation, u, s.towards_pole * inverse * (L - sample_[at(j - 1, k)]));
             }
             const double inverse = std::max(distance_[at(j, k)], distance_[at(j, previous)]);
-            const double cos_low = std::sqrt(1.0 - double(j) / m), cos_high = std::sqrt(1.0 - double(j + 1) / m);
-            add(translation, v_low, cos_j * (cos_low - cos_high) / sin_j * inverse * (L - sample_[at(j, previous)]));
+            add(translation, v_low, s.across_phi * inverse * (L - sample_[at(j, previous)]));
         }
     }
     LightGradients out;

@@ -1,0 +1,80 @@
+/// @file gather_hits.cpp
+/// @brief The final gather's recorded hits (gather_hits.h).
+#include "output/gather_hits.h"
+
+#include <cstring>
+
+namespace radiosity {
+namespace {
+
+uint32_t bits(float value) {
+    uint32_t out;
+    std::memcpy(&out, &value, sizeof out);
+    return out;
+}
+
+/// Bytes a recorded set holds besides its hits: the key, the vector and the map's node.
+constexpr std::size_t kSetOverhead = sizeof(GatherHits::Key) + sizeof(std::vector<hr::Visibility::Hit>) + 32;
+
+}  // namespace
+
+GatherHits::Key GatherHits::key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind) {
+    return Key{{bits(origin.x), bits(origin.y), bits(origin.z), bits(normal.x), bits(normal.y), bits(normal.z), seed,
+                (uint32_t(grid) << 1) | uint32_t(kind)}};
+}
+
+std::size_t GatherHits::KeyHash::operator()(const Key& key) const {
+    // FNV-1a over the key's words.
+    uint64_t h = 1469598103934665603ULL;
+    for (const uint32_t word : key.words) {
+        h ^= word;
+        h *= 1099511628211ULL;
+    }
+    return std::size_t(h ^ (h >> 29));
+}
+
+GatherHits::Shard& GatherHits::shard(const Key& key) const { return shards_[KeyHash()(key) % kShards]; }
+
+const std::vector<hr::Visibility::Hit>* GatherHits::find(const Key& key) const {
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const auto found = s.map.find(key);
+    return found == s.map.end() ? nullptr : &found->second;
+}
+
+bool GatherHits::reserve(std::size_t size) {
+    std::size_t held = bytes_.load(std::memory_order_relaxed);
+    do {
+        if (held + size > budget_bytes_) {
+            full_.store(true, std::memory_order_relaxed);
+            return false;
+        }
+    } while (!bytes_.compare_exchange_weak(held, held + size, std::memory_order_relaxed));
+    return true;
+}
+
+void GatherHits::record(const Key& key, std::vector<hr::Visibility::Hit>&& hits) {
+    const std::size_t size = hits.size() * sizeof(hr::Visibility::Hit) + kSetOverhead;
+    if (!reserve(size)) return;
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    hits.shrink_to_fit();
+    if (!s.map.emplace(key, std::move(hits)).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
+}
+
+const GatherHits::Slots* GatherHits::find_slots(const Key& key) const {
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const auto found = s.slots.find(key);
+    return found == s.slots.end() ? nullptr : &found->second;
+}
+
+void GatherHits::record_slots(const Key& key, const Slots& slots) {
+    const std::size_t size = slots.size() * sizeof(Slots::value_type) + kSetOverhead;
+    if (!reserve(size)) return;
+    Shard& s = shard(key);
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    if (!s.slots.emplace(key, slots).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
+}
+
+}  // namespace radiosity
