@@ -161,10 +161,11 @@ def test_thin_brush():
     def regions(p, n):
         dark = p[:, 0] > 3.005
         ledge = (p[:, 0] >= 0.5) & (p[:, 0] <= 2.5) & (p[:, 1] <= 0.3) & (np.abs(p[:, 2] - 1.5) < 0.011)
+        under = (p[:, 0] >= 0.5) & (p[:, 0] <= 2.5) & (p[:, 1] < 0.001) & (p[:, 2] < 1.49) & (p[:, 2] > 1.0)
         return {"dark room": (dark, False), "thin wall's dark side": (dark & (p[:, 0] < 3.02) & (n[:, 0] > 0.5), False),
                 "thin wall's lit side": ((p[:, 0] > 2.98) & (p[:, 0] < 2.995) & (n[:, 0] < -0.5), True),
                 "ledge's top": (ledge & (n[:, 2] > 0.5), True), "ledge's underside": (ledge & (n[:, 2] < -0.5), True),
-                "lit room": ((p[:, 0] < 2.99) & ~ledge, True)}
+                "wall under the ledge": (under, True), "lit room": ((p[:, 0] < 2.99) & ~ledge & ~under, True)}
     compare("thin brush", obj, regions)
 
 

@@ -9,7 +9,9 @@
 /// its rays' hit distances. A point x of normal n may take its indirect light from the records
 /// whose error measure
 ///     eps_i(x) = |x - x_i| / R_i + sqrt(1 - n . n_i)
-/// is below the accuracy a, which lie neither in front of it nor behind it, as
+/// is below the accuracy a (R_i clamped to R(x) + |x - x_i|, R(x) the point's own harmonic mean
+/// distance: Krivanek, Bouatouch, Pattanaik & Zara 2006's neighbour clamping), which lie neither in
+/// front of it nor behind it, as
 ///     E(x) = sum_i w_i [E_i + (n_i x n) . grad_r E_i + (x - x_i) . grad_t E_i] / sum_i w_i,
 ///     w_i = 1 / eps_i - 1 / a
 /// (the weight falls to 0 at the validity bound, so no record's edge shows: Tabellion & Lamorlette
@@ -82,8 +84,9 @@ struct CachePlan {
 /// so far cover it; then each other point's weights over all the records that cover it.
 CachePlan plan_cache(const std::vector<CachePoint>& points, double accuracy);
 
-/// Ward's error measure of record `r` at point `p`, or a negative value where `r` may not be read
-/// there (in front of or behind the point, or too far turned).
+/// Ward's error measure of record `r` at point `p`, with r's harmonic distance clamped to p's plus
+/// their separation (Krivanek et al. 2006's neighbour clamping), or a negative value where `r` may not
+/// be read there (in front of or behind the point, or too far turned).
 double cache_error(const CachePoint& r, const CachePoint& p);
 
 /// One record's indirect light read at `p`: E_i plus its gradients' change.

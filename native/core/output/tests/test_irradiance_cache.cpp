@@ -145,5 +145,24 @@ TEST(IrradianceCache, NothingIsReadAcrossATurnOrAStep) {
         }
 }
 
+TEST(IrradianceCache, APointNearerToWhatItSeesThanItsNeighbourGathersItself) {
+    // A wall under a 2 cm ledge (blender_test_level_features' thin brush, its probes' distances): the
+    // point 25 cm under the ledge sees it close (R 1.05 m); the one 50 cm under sees the room (R 1.75 m).
+    // Ward's measure lets the lower one's record reach the upper point (0.249 / 1.746 = 0.143 < 0.15),
+    // whose light there came out 4.5% over Cycles'; clamped to the upper point's own R plus the 0.249 m
+    // between them, it does not (0.249 / 1.301 = 0.191), and each gathers.
+    const glm::dvec3 n(0, 1, 0);
+    const CachePoint lower{glm::dvec3(0.747, 0.0, 0.993), n, 1.746, false};
+    const CachePoint upper{glm::dvec3(0.747, 0.0, 1.242), n, 1.052, false};
+    const double accuracy = 0.15;
+    EXPECT_NEAR(cache_error(lower, upper), 0.249 / (1.052 + 0.249), 1e-9);
+    EXPECT_NEAR(cache_error(upper, lower), 0.249 / 1.052, 1e-9);
+    EXPECT_EQ(plan_cache({lower, upper}, accuracy).records(), 2u);
+    // Points that see the same distance still share: 20 cm apart on an open wall (R 1.75 m).
+    const CachePoint beside{glm::dvec3(0.947, 0.0, 0.993), n, 1.746, false};
+    EXPECT_NEAR(cache_error(lower, beside), 0.2 / 1.746, 1e-9);
+    EXPECT_EQ(plan_cache({lower, beside}, accuracy).records(), 1u);
+}
+
 }  // namespace
 }  // namespace radiosity::detail
