@@ -134,6 +134,22 @@ void add(SolveResult& sum, const SolveResult& part, bool first) {
     sum.seconds += part.seconds;
 }
 
+void add(GatherPhaseCost& sum, const GatherPhaseCost& part) {
+    sum.seconds += part.seconds;
+    sum.rays += part.rays;
+}
+
+/// Every layer's gather: the phases' seconds and rays add; which points were gathered, interpolated
+/// or buried depends on the geometry alone, the same in every layer.
+void add(GatherCost& sum, const GatherCost& part) {
+    for (auto phase : {&GatherCost::other, &GatherCost::field, &GatherCost::wedges, &GatherCost::probes,
+                       &GatherCost::points, &GatherCost::seams})
+        add(sum.*phase, part.*phase);
+    sum.gathered = part.gathered;
+    sum.interpolated = part.interpolated;
+    sum.buried = part.buried;
+}
+
 void add_layer(BakeResult& total, const BakeResult& layer, bool first) {
     add(total.solve, layer.solve, first);
     add(total.colors, layer.colors);
@@ -151,6 +167,8 @@ void add_layer(BakeResult& total, const BakeResult& layer, bool first) {
     total.direct_emitters = std::max(total.direct_emitters, layer.direct_emitters);
     // Whether a corner is gathered or buried depends on the geometry alone: the same in every layer.
     total.gathered_points = layer.gathered_points;
+    total.interpolated_points = layer.interpolated_points;
+    add(total.gather_cost, layer.gather_cost);
     if (layer.hierarchy) total.hierarchy = layer.hierarchy;
     total.buried_points = layer.buried_points;
     if (layer.gather_statistics)

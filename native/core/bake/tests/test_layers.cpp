@@ -104,6 +104,13 @@ TEST(Layers, SumToTheTotalAndTheTotalIsTheOrdinaryBakeWhereNothingIsClamped) {
         EXPECT_GT(peak, 0.0);  // every group lights the scene
     }
     EXPECT_LT(worst_difference(sum, layered.total.colors.input_corner), 1e-12);
+    // The total's cost is every layer's gather: their rays add, the points gathered are the geometry's.
+    std::uint64_t rays = 0;
+    for (const BakeResult& layer : layered.layers) rays += layer.gather_cost.rays();
+    EXPECT_GT(rays, 0u);
+    EXPECT_EQ(layered.total.gather_cost.rays(), rays);
+    EXPECT_EQ(layered.total.gather_cost.gathered, layered.layers[0].gather_cost.gathered);
+    EXPECT_EQ(layered.total.interpolated_points, layered.layers[0].interpolated_points);
     // One bake with every source: the transport is linear, so the same light on every element.
     const BakeResult ordinary = bake(scene.input(), settings);
     EXPECT_LT(worst_difference(layered.total.solve.radiance, ordinary.solve.radiance), 1e-6);
