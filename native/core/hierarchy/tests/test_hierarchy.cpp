@@ -671,5 +671,56 @@ TEST(Hierarchy, BadSettingsAreInputErrors) {
     EXPECT_THROW(bake_hierarchical(box.input(), detail), InputError);
 }
 
+/// A rectangle from `a` along `u` and `v` (its normal u x v), as tiles of at most `tile` metres.
+void add_tiled(test::SceneArrays& s, const Vec3& a, const Vec3& u, const Vec3& v, float tile, const Rgb& rho) {
+    const int nu = int(std::ceil(glm::length(u) / tile)), nv = int(std::ceil(glm::length(v) / tile));
+    for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nv; ++j) {
+            const Vec3 p = a + u * (float(i) / nu) + v * (float(j) / nv), du = u / float(nu), dv = v / float(nv);
+            s.add_quad(p, p + du, p + du + dv, p + dv, rho);
+        }
+}
+
+/// A closed box [lo, hi] seen from inside, its sides in tiles of 1 m (as a level's brushes cut them).
+void add_tiled_room(test::SceneArrays& s, const Vec3& lo, const Vec3& hi, const Rgb& rho) {
+    const Vec3 d = hi - lo, X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);
+    add_tiled(s, lo, X, Y, 1.0f, rho);
+    add_tiled(s, lo + Z, Y, X, 1.0f, rho);
+    add_tiled(s, lo, Z, X, 1.0f, rho);
+    add_tiled(s, lo + Y, X, Z, 1.0f, rho);
+    add_tiled(s, lo, Y, Z, 1.0f, rho);
+    add_tiled(s, lo + X, Z, Y, 1.0f, rho);
+}
+
+/// Area-weighted mean radiance (red) of the output elements whose centres lie between x0 and x1.
+double mean_between(const HierarchyResult& r, float x0, float x1) {
+    double power = 0.0, area = 0.0;
+    for (std::size_t e = 0; e < r.output.size(); ++e)
+        if (r.output.centre[e].x > x0 && r.output.centre[e].x < x1) {
+            power += r.output.area[e] * r.output_radiance[e].r;
+            area += r.output.area[e];
+        }
+    return power / area;
+}
+
+TEST(Hierarchy, ClosedRoomsBesideALitOneStayBlack) {
+    // Three closed 4 x 3 x 2.5 m rooms in a row, 2 cm or 20 cm walls between them (each room's own
+    // wall, back to back), a lamp in the first: no light reaches the other two, exactly. Light that
+    // links between clusters carried through a wall (the classic leak of clustering, rays that skip
+    // what lies inside the clusters' bounding spheres) would show there.
+    for (const float wall : {0.02f, 0.2f}) {
+        test::SceneArrays rooms;
+        for (int k = 0; k < 3; ++k)
+            add_tiled_room(rooms, {k * (4 + wall), 0, 0}, {k * (4 + wall) + 4, 3, 2.5f}, Rgb(0.7));
+        HierarchySettings s = with_lamp(settings(0.25f, 0.02), Vec3(2.0f, 1.5f, 1.5f));
+        s.tolerance = 1e-4;
+        s.max_rounds = HierarchySettings().max_rounds;
+        const HierarchyResult r = bake_hierarchical(rooms.input(), s);
+        EXPECT_GT(mean_between(r, -1.0f, 4.0f), 0.1) << wall;
+        EXPECT_EQ(mean_between(r, 4.0f + wall, 8.0f + wall), 0.0) << wall;
+        EXPECT_EQ(mean_between(r, 8.0f + 2 * wall, 13.0f), 0.0) << wall;
+    }
+}
+
 }  // namespace
 }  // namespace radiosity
