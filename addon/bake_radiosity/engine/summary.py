@@ -64,10 +64,10 @@ def gather_cost(final_gather):
 
 def cost_line(summary):
     """What the bake cost and why, in words: its elements (and the unknowns solved where small faces
-    merged into fewer), the output points the final gather
-    gathered and those whose indirect light it interpolated between them, the rays it traced, and
-    each phase's seconds (the gather's own phases in brackets); phases under 0.05 s are left out;
-    then whether it reused the previous bake's geometry (bake_cache.cache_text)."""
+    merged into fewer), the output points the final gather gathered and those whose indirect light
+    it interpolated between them, the rays it traced, and each phase's seconds (the gather's own
+    phases in brackets); phases under 0.05 s are left out; then whether it reused the previous
+    bake's geometry (bake_cache.cache_text)."""
     gather = summary.get("gather")
     parts = ["%s elements" % format(summary["elements"], ",")]
     solved = summary.get("solve_elements", summary["elements"])
