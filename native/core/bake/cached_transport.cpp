@@ -59,6 +59,7 @@ void hash_settings(const BakeSettings& settings, Hash& h) {
     h.word(uint32_t(settings.near_field.sub_points));
     h.size(settings.matrix_budget_bytes);
     h.word(uint32_t(settings.solve.method == Method::Progressive));
+    h.word(uint32_t(settings.merge_elements));
 }
 
 std::size_t elements_bytes(const Elements& e) {

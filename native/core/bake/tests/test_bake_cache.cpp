@@ -147,6 +147,11 @@ TEST(BakeCache, AChangeOfGeometryOrOfWhatEmitsBakesAfresh) {
     finer.element_size = 0.2f;
     EXPECT_FALSE(bake(scene.input(), finer, {}, &cache).cache->reused);
     EXPECT_TRUE(bake(scene.input(), finer, {}, &cache).cache->reused);
+    BakeSettings unmerged = finer;  // one unknown per face's element: other solve elements
+    unmerged.merge_elements = false;
+    const BakeResult own = bake(scene.input(), unmerged, {}, &cache);
+    EXPECT_FALSE(own.cache->reused);
+    expect_same_bake(own, bake(scene.input(), unmerged), "elements not merged");
 }
 
 TEST(BakeCache, OverTheMemoryBudgetItBakesWithoutKeepingIt) {
