@@ -55,7 +55,9 @@ BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settin
 }
 
 Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings) {
-    return cluster_elements(elements, input, settings.merge_elements ? settings.element_size : 0.0f);
+    std::vector<Vec3> lamps;
+    for (const PointLight& lamp : settings.lights.points) lamps.push_back(lamp.position);
+    return cluster_elements(elements, input, settings.merge_elements ? settings.element_size : 0.0f, lamps);
 }
 
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {

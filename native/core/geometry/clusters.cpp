@@ -63,11 +63,15 @@ bool textured(const SceneInput& input, int32_t face) {
 }
 
 /// Whether element e may merge: a one-sided front that neither emits nor is a lamp, of an
-/// untextured face. (Elements along intersection and contact lines merge too, but never across
-/// the line: joined_outline.)
-bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e) {
+/// untextured face, no nearer to a point lamp than `near` (elements nearer see the lamp's light and
+/// the geometry around it change within a merged element's size). (Elements along intersection and
+/// contact lines merge too, but never across the line: joined_outline.)
+bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e, const std::vector<Vec3>& lamps,
+               double near) {
     if (elements.has_twin(e) || max_channel(elements.emission[e]) > 0.0) return false;
     if (!elements.blocks(e)) return false;
+    for (const Vec3& lamp : lamps)
+        if (glm::distance(elements.centre[e], lamp) < near) return false;
     return !textured(input, elements.polygon[e]);
 }
 
@@ -221,11 +225,12 @@ std::vector<Lattice> plane_lattices(std::vector<Region>& regions, double size) {
 }
 
 /// One region per mergeable element; `region_of` -1 for the others.
-std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, std::vector<int32_t>& region_of) {
+std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, const std::vector<Vec3>& lamps,
+                                   double near, std::vector<int32_t>& region_of) {
     std::vector<Region> regions;
     region_of.assign(elements.size(), -1);
     for (std::size_t e = 0; e < elements.size(); ++e) {
-        if (!mergeable(elements, input, e)) continue;
+        if (!mergeable(elements, input, e, lamps, near)) continue;
         Region region;
         const unsigned bits = elements.cut_edges.empty() ? 0u : elements.cut_edges[e];
         for (int k = 0; k < elements.corner_count(e); ++k) {
@@ -402,11 +407,12 @@ private:
 
 }  // namespace
 
-Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size) {
+Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size,
+                          const std::vector<Vec3>& lamps) {
     Clusters clusters;
     if (!(element_size > 0.0f)) return clusters;
     std::vector<int32_t> region_of;
-    std::vector<Region> regions = single_regions(output, input, region_of);
+    std::vector<Region> regions = single_regions(output, input, lamps, 2.0 * double(element_size), region_of);
     merge_regions(regions, double(element_size));
     bool any = false;
     for (const Region& region : regions) {

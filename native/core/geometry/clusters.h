@@ -43,8 +43,11 @@ struct Clusters {
 
 /// Merges `output`'s small coplanar elements (see the top of this file) into solve elements whose
 /// edges are at most `element_size` metres (0: nothing merges). `input` gives each element's
-/// material and whether its face is textured.
-Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size);
+/// material and whether its face is textured. Elements within twice `element_size` of a point
+/// lamp at one of `lamps` keep their own: beside a lamp its light and what the geometry around it
+/// lets through change within a merged element's size (a lamp's fixture).
+Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size,
+                          const std::vector<Vec3>& lamps = {});
 
 /// `per_solve` (one value per solve element) read by every output element; `per_solve` itself
 /// when nothing merged.

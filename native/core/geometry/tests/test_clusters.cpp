@@ -180,6 +180,30 @@ TEST(Clusters, ClustersNeverStraddleAContactLine) {
     EXPECT_GT(merged_cut_elements, cut_elements / 2);
 }
 
+/// A floor of small faces with a point lamp 10 cm over one corner: the faces within twice the
+/// element size of the lamp keep their own solve elements, the rest merge as without the lamp.
+TEST(Clusters, FacesBesideAPointLampKeepTheirOwnElements) {
+    test::SceneArrays floor;
+    floor.add_grid(Vec3(0.0f), Vec3(2, 0, 0), Vec3(0, 2, 0), 32, Rgb(0.5));
+    const BuildResult build = build_elements(floor.input(), kSize);
+    const Vec3 lamp(0.5f, 0.5f, 0.1f);
+    const Clusters lit = cluster_elements(build.elements, floor.input(), kSize, {lamp});
+    const Clusters unlit = cluster_elements(build.elements, floor.input(), kSize);
+    ASSERT_TRUE(lit.merged());
+    std::vector<int> members(lit.elements.size(), 0);
+    for (const int32_t s : lit.of_element) ++members[std::size_t(s)];
+    std::size_t near = 0;
+    for (std::size_t e = 0; e < build.elements.size(); ++e) {
+        if (glm::distance(build.elements.centre[e], lamp) >= 2.0f * kSize) continue;
+        ++near;
+        EXPECT_EQ(members[std::size_t(lit.of_element[e])], 1) << e;
+    }
+    EXPECT_GT(near, 100u);  // a disk of about 0.5 m around the lamp's foot: about 190 faces of 6.25 cm
+    EXPECT_EQ(unlit.elements.size(), 64u);  // the 2 m floor in elements of the element size
+    EXPECT_GT(lit.elements.size(), unlit.elements.size() + near / 2);
+    EXPECT_LT(lit.elements.size(), build.elements.size() / 2);
+}
+
 /// No element size (one element per polygon): nothing merges.
 TEST(Clusters, NoElementSizeNoMerge) {
     test::SceneArrays floor;
