@@ -198,7 +198,7 @@ TEST(Clusters, FacesBesideAPointLampKeepTheirOwnElements) {
         ++near;
         EXPECT_EQ(members[std::size_t(lit.of_element[e])], 1) << e;
     }
-    EXPECT_GT(near, 100u);  // a disk of about 0.5 m around the lamp's foot: about 190 faces of 6.25 cm
+    EXPECT_GT(near, 100u);                  // a disk of about 0.5 m around the lamp's foot: about 190 faces of 6.25 cm
     EXPECT_EQ(unlit.elements.size(), 64u);  // the 2 m floor in elements of the element size
     EXPECT_GT(lit.elements.size(), unlit.elements.size() + near / 2);
     EXPECT_LT(lit.elements.size(), build.elements.size() / 2);
