@@ -12,7 +12,9 @@ STUB = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bake_radi
 
 def stub_names():
     names = set()
-    for node in ast.parse(open(STUB).read()).body:
+    with open(STUB) as stub:
+        tree = ast.parse(stub.read())
+    for node in tree.body:
         if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
             names.add(node.name)
         elif isinstance(node, ast.AnnAssign):
