@@ -264,6 +264,21 @@ def cornell_box(light="MESH", radiance=8.0, cells=CORNELL_CELLS):
     return box
 
 
+def cornell_box_under_lamps(count):
+    """The Cornell box and `count` point lamps 'Lamp 0', 'Lamp 1', ... of 2 W each, 0.15 m under the
+    ceiling on a 0.5 m circle (the lab's light-group and re-bake timings). Returns the box."""
+    clear_scene()
+    box = cornell_box()
+    for i in range(count):
+        light = bpy.data.lights.new("Lamp %d" % i, "POINT")
+        light.energy, light.shadow_soft_size = 2.0, 0.0
+        lamp = bpy.data.objects.new("Lamp %d" % i, light)
+        angle = 2.0 * math.pi * i / count
+        lamp.location = (0.5 + 0.25 * math.cos(angle), 0.5 + 0.25 * math.sin(angle), 0.85)
+        bpy.context.scene.collection.objects.link(lamp)
+    return box
+
+
 def room_with_panel(albedo=0.5):
     """A closed 2 m room (ROOM_SIDES, 4 x 4 quads a side) of the given albedo, lit by a 50 cm
     emitting panel facing down 10 cm under the ceiling."""
@@ -341,6 +356,20 @@ def camera_looking_along_y(location, lens):
 
 def camera_for_cornell_box():
     return camera_looking_along_y((0.5, -1.02, 0.5), 35.0)
+
+
+def wall_light(room, colors):
+    """The cluttered room's walls' light from its mesh `room` and (loops, 3) `colors`: the corners'
+    grey averaged per face, then over the wall faces (normal within 60 degrees of horizontal) by area."""
+    count = len(room.polygons)
+    loop_total, areas, normals = np.empty(count, dtype=np.int64), np.empty(count), np.empty(3 * count)
+    room.polygons.foreach_get("loop_total", loop_total)
+    room.polygons.foreach_get("area", areas)
+    room.polygons.foreach_get("normal", normals)
+    loop_face = np.repeat(np.arange(count), loop_total)
+    face = np.bincount(loop_face, colors.mean(axis=1)) / np.bincount(loop_face)
+    walls = np.abs(normals.reshape(-1, 3)[:, 2]) < 0.5
+    return float((face[walls] * areas[walls]).sum() / areas[walls].sum())
 
 
 def cluttered_room(blocks, size=0.02, cells=1):

@@ -22,26 +22,16 @@ addon = harness.install_addon(args.addon_zip)
 SAMPLES, SEEDS = 1024, (1, 2)
 
 
-def wall_light(room, colors):
-    """The walls' light: the corners' grey averaged per face, then over the wall faces by area."""
-    grey = colors.mean(axis=1)
-    loop_face = np.repeat(np.arange(len(room.polygons)), [p.loop_total for p in room.polygons])
-    face = np.bincount(loop_face, grey) / np.bincount(loop_face)
-    areas = np.array([p.area for p in room.polygons])
-    walls = np.array([abs(p.normal[2]) < 0.5 for p in room.polygons])
-    return float((face[walls] * areas[walls]).sum() / areas[walls].sum())
-
-
 def room_walls(blocks):
     """The walls' light of the room with `blocks` blocks: the bake's summary and light, and each
     Cycles seed's light."""
     scenes.clear_scene()
     scenes.cluttered_room(blocks, cells=8)
     room = bpy.data.objects["Room"]
-    cycles = [wall_light(room.data, harness.cycles_corner_bake(room, SAMPLES, seed)) for seed in SEEDS]
+    cycles = [scenes.wall_light(room.data, harness.cycles_corner_bake(room, SAMPLES, seed)) for seed in SEEDS]
     with harness.Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, quality="MEDIUM")
-    baked = wall_light(room.data, harness.corner_colors(room.data, "Radiosity"))
+    baked = scenes.wall_light(room.data, harness.corner_colors(room.data, "Radiosity"))
     print("%d blocks: %s, %d elements (%d solved), %.1f s CPU; walls %.4f, Cycles %.4f and %.4f" % (
         blocks, summary["method"], summary["elements"], summary.get("solve_elements", summary["elements"]),
         seconds.cpu, baked, cycles[0], cycles[1]), flush=True)

@@ -24,16 +24,6 @@ import harness  # noqa: E402
 import scenes  # noqa: E402
 
 
-def wall_mean(room, colors):
-    """The walls' light: the corners' grey averaged per face, then over the wall faces by area."""
-    grey = colors.mean(axis=1)
-    loop_face = np.repeat(np.arange(len(room.polygons)), [p.loop_total for p in room.polygons])
-    face = np.bincount(loop_face, grey) / np.bincount(loop_face)
-    areas = np.array([p.area for p in room.polygons])
-    walls = np.array([abs(p.normal[2]) < 0.5 for p in room.polygons])
-    return float((face[walls] * areas[walls]).sum() / areas[walls].sum())
-
-
 def measure(addon, blocks, args):
     scenes.clear_scene()
     scenes.cluttered_room(blocks, cells=args.cells)
@@ -42,8 +32,8 @@ def measure(addon, blocks, args):
     cycles = harness.cached_cycles_bakes(room, truth, args.samples)
     with harness.Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, quality=args.quality)
-    walls = wall_mean(room.data, harness.corner_colors(room.data, "Radiosity"))
-    cycles_walls = [wall_mean(room.data, c) for c in cycles["colors"]]
+    walls = scenes.wall_light(room.data, harness.corner_colors(room.data, "Radiosity"))
+    cycles_walls = [scenes.wall_light(room.data, c) for c in cycles["colors"]]
     print("%d blocks: %s, %d elements (%d solved), %.1f s wall, %.1f s CPU; walls %.4f, Cycles %.4f (seeds %.2f%% "
           "apart, %.0f s for both)" % (
               blocks, summary["method"], summary["elements"], summary.get("solve_elements", summary["elements"]),

@@ -1,10 +1,10 @@
-"""A level's own `_core.bake` call (the settings the add-on chooses at Medium), run again with some of its
-keywords changed, each against a deep Cycles truth that lab/interior/measure.py cached: the mean over
-the lit vertices, the luminance-weighted ratio to the truth by distance from the nearest lamp, the
-power balance, and, with --polygons, each variant's solved light per input polygon (area-weighted
-means of the elements' radiance and of their emission, the lamps' first reflection included) in a
-.npz beside the truth, so that two methods' solutions can be compared polygon by polygon whatever
-their meshes. Run inside Blender:
+"""A level's own `_core.bake` call (the settings the add-on chooses at Medium), run again with some of
+its keywords changed, each against a deep Cycles truth that lab/interior/measure.py cached: the mean
+over the lit vertices, the median and RMS per vertex and the luminance-weighted ratio to the truth
+by distance from the nearest lamp (lab/levels/variants.py's report), the power balance, and, with
+--polygons, each variant's solved light per input polygon (area-weighted means of the elements'
+radiance and of their emission, the lamps' first reflection included) in a .npz beside the truth, so
+that two methods' solutions can be compared polygon by polygon whatever their meshes. Run inside Blender:
 
     BLENDER_USER_SCRIPTS=$(mktemp -d) BLENDER_USER_CONFIG=$(mktemp -d) \\
       blender -b --factory-startup --python-exit-code 1 --python lab/levels/core_variants.py -- \\
@@ -23,14 +23,13 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "blender_tests"))
+sys.path.insert(0, here)
 
 import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 
 import harness  # noqa: E402
-
-BANDS = ((0.0, 1.0), (1.0, 2.0), (2.0, 4.0), (4.0, 8.0), (8.0, float("inf")))
-LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+import variants  # noqa: E402
 
 
 class Captured(Exception):
@@ -84,14 +83,8 @@ def main():
     bpy.ops.wm.open_mainfile(filepath=args.blend)
     mesh = bpy.data.objects[args.object].data
     cached = np.load(args.truth)
-    runs = cached["runs"]
-    truth = runs.mean(axis=0)
-    lit = truth > 0.01 * truth.mean()
     positions = cached["positions"].reshape(-1, 3)
     lamps = np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
-    distance = np.min(np.linalg.norm(positions[:, None, :] - lamps[None, :, :], axis=2), axis=1)
-    vertex = np.empty(len(mesh.loops), dtype=np.int64)
-    mesh.loops.foreach_get("vertex_index", vertex)
     scene, base, core = captured_call(addon)
     energy = sys.modules[harness.MODULE + ".engine.energy"]
     saved = {}
@@ -104,21 +97,12 @@ def main():
         start = time.process_time()
         result = core.bake(*scene.scene_arrays(), front_only=scene.front_only, textures=scene.textures, **keywords)
         cpu = time.process_time() - start
-        corners = np.asarray(result["corner_radiance"]).reshape(-1, 3) @ LUMINANCE
-        assert len(corners) == len(vertex), "the scene's corners are not the mesh's loops"
-        baked = np.bincount(vertex, corners, len(mesh.vertices)) / np.maximum(np.bincount(vertex), 1)
-        balance = energy.balance(result)
-        print("%s: %s, %d elements, %.1f CPU s; mean %.4f of the truth, median per vertex %.2f%%; absorbed %.4f "
-              "of the emitted" % (variant, keywords["method"], len(result["element_radiance"]), cpu,
-                                  baked[lit].sum() / truth[lit].sum(),
-                                  100 * np.median(np.abs(baked[lit] / truth[lit] - 1)), balance.absorbed_fraction),
-              flush=True)
-        for low, high in BANDS:
-            band = lit & (distance >= low) & (distance < high)
-            if band.any():
-                error = np.sqrt(runs[:, band].sum(axis=1).var(ddof=1) / len(runs)) / truth[band].sum()
-                print("  %4.1f to %4.1f m from a lamp: %4d vertices, %.4f +- %.4f"
-                      % (low, high, band.sum(), baked[band].sum() / truth[band].sum(), error), flush=True)
+        corners = np.asarray(result["corner_radiance"]).reshape(-1, 3)
+        assert len(corners) == len(mesh.loops), "the scene's corners are not the mesh's loops"
+        baked = variants.luminance_per_vertex(mesh, corners)
+        variants.report("%s (%s, %d elements)" % (variant, keywords["method"], len(result["element_radiance"])),
+                        baked, cached["runs"], positions, lamps, cpu)
+        print("  absorbed %.4f of the emitted" % energy.balance(result).absorbed_fraction, flush=True)
         saved[variant + " radiance"] = per_polygon(result, "element_radiance", len(mesh.polygons))
         saved[variant + " emission"] = per_polygon(result, "element_emission", len(mesh.polygons))
     if args.polygons:

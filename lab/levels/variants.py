@@ -86,4 +86,5 @@ def main():
                cached["runs"], positions, lamps, seconds.cpu)
 
 
-main()
+if __name__ == "__main__":  # lab/levels/core_variants.py imports report and luminance_per_vertex
+    main()

@@ -10,7 +10,6 @@ process's peak resident memory (run one group count a process to compare those).
 """
 
 import argparse
-import math
 import os
 import resource
 import sys
@@ -24,20 +23,6 @@ import harness  # noqa: E402
 import scenes  # noqa: E402
 
 LAMPS = 8
-
-
-def lit_box():
-    """The Cornell box and 8 point lamps of 2 W each, 0.15 m under the ceiling on a 0.5 m circle."""
-    scenes.clear_scene()
-    box = scenes.cornell_box()
-    for i in range(LAMPS):
-        light = bpy.data.lights.new("Lamp %d" % i, "POINT")
-        light.energy, light.shadow_soft_size = 2.0, 0.0
-        lamp = bpy.data.objects.new("Lamp %d" % i, light)
-        angle = 2.0 * math.pi * i / LAMPS
-        lamp.location = (0.5 + 0.25 * math.cos(angle), 0.5 + 0.25 * math.sin(angle), 0.85)
-        bpy.context.scene.collection.objects.link(lamp)
-    return box
 
 
 def group_sources(box, groups):
@@ -61,7 +46,7 @@ def main():
     parser.add_argument("--method", help="a method instead of the preset's (Custom quality, its defaults)")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
-    box = lit_box()
+    box = scenes.cornell_box_under_lamps(LAMPS)
     for groups in [int(g) for g in args.groups.split(",")]:
         group_sources(box, groups)
         wall, cpu = time.perf_counter(), time.process_time()

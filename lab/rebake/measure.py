@@ -17,7 +17,6 @@ the re-bake's colours from the bake from scratch. Run inside Blender:
 """
 
 import argparse
-import math
 import os
 import sys
 
@@ -33,19 +32,6 @@ import scenes  # noqa: E402
 
 CORNELL_LAMPS = 8
 MOVE = (0.3, 0.0, 0.0)
-
-
-def cornell():
-    """The Cornell box and 8 point lamps of 2 W each, 0.15 m under the ceiling on a 0.5 m circle."""
-    scenes.clear_scene()
-    scenes.cornell_box()
-    for i in range(CORNELL_LAMPS):
-        light = bpy.data.lights.new("Lamp %d" % i, "POINT")
-        light.energy, light.shadow_soft_size = 2.0, 0.0
-        lamp = bpy.data.objects.new("Lamp %d" % i, light)
-        angle = 2.0 * math.pi * i / CORNELL_LAMPS
-        lamp.location = (0.5 + 0.25 * math.cos(angle), 0.5 + 0.25 * math.sin(angle), 0.85)
-        bpy.context.scene.collection.objects.link(lamp)
 
 
 def interior():
@@ -137,7 +123,7 @@ def main():
     parser.add_argument("--quality", default="MEDIUM")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
-    build = {"cornell": cornell, "interior": interior,
+    build = {"cornell": lambda: scenes.cornell_box_under_lamps(CORNELL_LAMPS), "interior": interior,
              "level": lambda: bpy.ops.wm.open_mainfile(filepath=args.blend)}
     for name in args.scenes.split(","):
         build[name]()
