@@ -3,10 +3,8 @@
 #include "bake/cached_transport.h"
 
 #include "geometry/surface_textures.h"
-#include "geometry/texture.h"
 
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -81,27 +79,10 @@ std::size_t hits_budget(const UniformTransport& t, const BakeSettings& settings)
     return held < settings.matrix_budget_bytes ? settings.matrix_budget_bytes - held : 0;
 }
 
-[[noreturn]] void fail(std::size_t polygon, const std::string& what) {
-    throw InputError("polygon " + std::to_string(polygon) + ": " + what);
-}
-
-/// The input's reflectance and emission as build_elements checks them.
-void check_materials(const SceneInput& in) {
-    for (std::size_t f = 0; f < in.face_count; ++f)
-        for (int c = 0; c < 3; ++c) {
-            const float rho = in.reflectance[3 * f + c];
-            if (!(rho >= 0.0f && rho < 1.0f)) fail(f, "reflectance " + std::to_string(rho) + " outside [0, 1)");
-            const float emitted = in.emission[3 * f + c];
-            if (!(emitted >= 0.0f && std::isfinite(emitted)))
-                fail(f, "emission " + std::to_string(emitted) + " negative or not finite");
-        }
-    if (in.textures) validate_textures(*in.textures, in.face_count, std::size_t(in.face_offsets[in.face_count]));
-}
-
 /// Each element's reflectance and emission from its polygon's, as build_elements gives them (and
 /// the textures' means over it), and the merged solve elements' reflectance from their members'.
 void refresh_materials(const SceneInput& in, UniformTransport& t, const ProgressFn& progress) {
-    check_materials(in);
+    validate_materials(in);
     Elements& elements = t.build.elements;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         const std::size_t f = std::size_t(elements.polygon[e]);

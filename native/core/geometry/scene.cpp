@@ -43,17 +43,9 @@ void validate_arrays(const SceneInput& in) {
         (!in.positions && in.vertex_count))
         throw InputError("scene arrays: a required array is null");
     if (in.face_offsets[0] != 0) fail(0, "face offsets must start at 0");
-    for (std::size_t f = 0; f < in.face_count; ++f) {
+    for (std::size_t f = 0; f < in.face_count; ++f)
         if (in.face_offsets[f + 1] < in.face_offsets[f]) fail(f, "face offsets decrease");
-        for (int c = 0; c < 3; ++c) {
-            const float rho = in.reflectance[3 * f + c];
-            if (!(rho >= 0.0f && rho < 1.0f)) fail(f, "reflectance " + std::to_string(rho) + " outside [0, 1)");
-            const float emitted = in.emission[3 * f + c];
-            if (!(emitted >= 0.0f && std::isfinite(emitted)))
-                fail(f, "emission " + std::to_string(emitted) + " negative or not finite");
-        }
-    }
-    if (in.textures) validate_textures(*in.textures, in.face_count, std::size_t(in.face_offsets[in.face_count]));
+    validate_materials(in);
 }
 
 /// Number of segments an edge of this length is cut into so that each is at most max_edge.
@@ -456,6 +448,18 @@ void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides)
 }
 
 }  // namespace
+
+void validate_materials(const SceneInput& in) {
+    for (std::size_t f = 0; f < in.face_count; ++f)
+        for (int c = 0; c < 3; ++c) {
+            const float rho = in.reflectance[3 * f + c];
+            if (!(rho >= 0.0f && rho < 1.0f)) fail(f, "reflectance " + std::to_string(rho) + " outside [0, 1)");
+            const float emitted = in.emission[3 * f + c];
+            if (!(emitted >= 0.0f && std::isfinite(emitted)))
+                fail(f, "emission " + std::to_string(emitted) + " negative or not finite");
+        }
+    if (in.textures) validate_textures(*in.textures, in.face_count, std::size_t(in.face_offsets[in.face_count]));
+}
 
 BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLimits& limits,
                            const ProgressFn& progress) {

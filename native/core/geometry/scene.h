@@ -144,6 +144,11 @@ struct ElementLimits {
 BuildResult build_elements(const SceneInput& input, float max_edge, const ElementLimits& limits = {},
                            const ProgressFn& progress = {});
 
+/// The materials' part of build_elements' checks: reflectance in [0, 1), emission finite and not
+/// negative, the textures' arrays consistent; InputError naming the polygon. For a caller that
+/// reads new materials onto elements built before (bake/cached_transport.cpp).
+void validate_materials(const SceneInput& input);
+
 /// The diagonal of the points' bounding box, at least 1e-6 (1 for no points): the scale the
 /// gaps and lifts of rays are measured against.
 float scene_diagonal(const std::vector<Vec3>& points);
