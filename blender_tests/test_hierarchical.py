@@ -285,10 +285,6 @@ def test_fog_refuses_the_method_and_changes_nothing():
     corner, size = np.array([-0.2, -0.2, 0.1]), 0.2
     scenes.mesh_object("Fog", [scenes.grid(corner + size * np.array(o), size * np.array(u), size * np.array(v), 1, 1)
                                + (0,) for o, u, v in cube], [fog])
-    # Lit by an emitting face, not the lamp: lamps are not shot through fog at all (another message).
-    bpy.data.objects.remove(bpy.data.objects["Lamp"])
-    scenes.mesh_object("Panel", [scenes.grid((-0.1, -0.1, 0.6), (0, 0.2, 0), (0.2, 0, 0), 1, 1) + (0,)],
-                       [scenes.emission("Panel", (1.0, 1.0, 1.0), 5.0)])
     attributes_before = len(floor.data.color_attributes)
     try:
         addon.bake(bpy.context.scene, method="HIERARCHICAL")

@@ -97,9 +97,6 @@ class BakeJob:
             unwritable = media_writeback.unwritable_reason(self.settings["media_folder"])
             if unwritable:
                 raise BakeError(unwritable)
-        if self.media.media and self.exported.lights:
-            raise BakeError("Point, spot and sun lamps are not shot through fog yet: light a scene with media "
-                            "by area lamps or emitting meshes")
         self.world, world_warnings = world.export_world(scene)
         self.warnings += world_warnings
         if not self.exported.lights and not self.exported.emission.any() and not any(

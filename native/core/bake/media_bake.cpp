@@ -4,6 +4,7 @@
 
 #include "bake/pipelines.h"
 #include "geometry/surface_textures.h"
+#include "media/lamps_in_media.h"
 #include "media/zonal_solver.h"
 
 #include <chrono>
@@ -14,6 +15,17 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// The lamps' first reflection, rho E / pi, joins the elements' emission and their first
+/// scattering, Omega H, the zones' emitted radiance (lamps_in_media.h).
+void add_first_shot(Elements& elements, const std::vector<Medium>& media, Zones& zones, const Lights& lights,
+                    const ProgressFn& progress) {
+    if (lights.empty()) return;
+    const LampsThroughMedia lamps = lamps_through_media(elements, lights, zones, MediumTracer(media, zones), progress);
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        elements.emission[e] += elements.reflectance[e] * lamps.element_irradiance[e] / M_PI;
+    for (std::size_t k = 0; k < zones.size(); ++k) zones.emitted[k] += zones.albedo[k] * lamps.zone_incident[k];
+}
 
 }  // namespace
 
@@ -26,14 +38,16 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
     auto start = Clock::now();
     result.zones = build_zones(media, max_block_level);
     result.seconds_zones = seconds_since(start);
-    if (!settings.lights.empty() && result.zones.size() > 0)
-        throw InputError(
-            "point, spot and sun lamps are not shot through media yet; light media with emitting polygons");
 
     start = Clock::now();
     bake.build = detail::media_elements(input, settings);
-    const Elements& elements = bake.build.elements;
+    Elements& elements = bake.build.elements;
     bake.seconds_elements = seconds_since(start);
+
+    const std::vector<Rgb> emitted = elements.emission;
+    start = Clock::now();
+    add_first_shot(elements, media, result.zones, settings.lights, progress);
+    bake.seconds_lights = seconds_since(start);
 
     start = Clock::now();
     const bool progressive = settings.solve.method == Method::Progressive;
@@ -61,9 +75,8 @@ ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Mediu
 
     start = Clock::now();
     bake.colors = interpolate_corners(elements, bake.solve.radiance, input.material, settings.hard_edge_angle);
-    bake.light_colors =
-        interpolate_corners(elements, detail::light_arriving(elements, bake.solve.radiance, elements.emission),
-                            input.material, settings.hard_edge_angle);
+    bake.light_colors = interpolate_corners(elements, detail::light_arriving(elements, bake.solve.radiance, emitted),
+                                            input.material, settings.hard_edge_angle);
     // Textured faces show their texel at each corner, lit by the light arriving there.
     if (input.textures) detail::texture_corners(input, elements, bake.light_colors, bake.colors);
     bake.seconds_interpolate = seconds_since(start);

@@ -26,8 +26,10 @@ struct ZonalBakeResult : MediaResult {
 /// (zone_resolution) see through the media's zones (uniform blocks merged up to max_block_level),
 /// made reciprocal (enforce_reciprocity); the rows are stored within settings.matrix_budget_bytes
 /// (half of it for progressive refinement, which also holds R^T), else InputError. Point, spot and
-/// sun lamps are not shot through media yet, so settings.lights must be empty when there are zones
-/// (InputError); emitting polygons light media. Progress phases "form_factors", "solve"; throws Cancelled.
+/// sun lamps are shot first (lamps_in_media.h): the elements' reported emission holds their first
+/// reflection and the zones' emitted radiance their first scattering, as bake() reports a first
+/// reflection; `zone_incident` is the light the solve brings (R L). Progress phases "lights",
+/// "form_factors", "solve"; throws Cancelled.
 ZonalBakeResult bake_with_media(const SceneInput& input, const std::vector<Medium>& media, const BakeSettings& settings,
                                 int zone_resolution = 32, const ProgressFn& progress = {}, int grid_subdivision = 1,
                                 int max_block_level = kDefaultMaxBlockLevel);

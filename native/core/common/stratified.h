@@ -1,6 +1,7 @@
 /// @file stratified.h
 /// @brief Deterministic stratified samples: points on a triangle or quad, cosine-weighted
-/// directions on a hemisphere (internal; the hierarchy's visibility rays and the final gather).
+/// directions on a hemisphere, points in a cube (internal; the hierarchy's visibility rays, the final
+/// gather, the zones' rays).
 #pragma once
 
 #include "common/types.h"
@@ -41,6 +42,16 @@ inline void stratified_points(const Vec3* c, int count, int grid, uint32_t seed,
             points[i] = (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
         }
     }
+}
+
+/// Point n of Roberts' R3 sequence in [0, 1)^3: well spread for any run of consecutive n, so
+/// points n .. n + m of it cover a cube evenly for every m.
+inline Vec3 r3_point(std::size_t n) {
+    constexpr double g = 1.2207440846057594754;  // the plastic number: x^4 = x + 1
+    constexpr double a1 = 1.0 / g, a2 = 1.0 / (g * g), a3 = 1.0 / (g * g * g);
+    const double i = double(n);
+    return Vec3(float(std::fmod(0.5 + a1 * i, 1.0)), float(std::fmod(0.5 + a2 * i, 1.0)),
+                float(std::fmod(0.5 + a3 * i, 1.0)));
 }
 
 /// Two unit tangents completing the unit normal `n` to a right-handed frame.

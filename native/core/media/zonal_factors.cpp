@@ -3,6 +3,7 @@
 #include "media/zonal.h"
 
 #include "common/parallel_rows.h"
+#include "common/stratified.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <glm/geometric.hpp>
@@ -13,16 +14,6 @@
 
 namespace radiosity {
 namespace {
-
-/// Point n of Roberts' R3 sequence in [0, 1)^3: well spread for any run of consecutive n, so the
-/// cells of every face start their rays all over the zone.
-Vec3 r3_point(std::size_t n) {
-    constexpr double g = 1.2207440846057594754;  // the plastic number: x^4 = x + 1
-    constexpr double a1 = 1.0 / g, a2 = 1.0 / (g * g), a3 = 1.0 / (g * g * g);
-    const double i = double(n);
-    return Vec3(float(std::fmod(0.5 + a1 * i, 1.0)), float(std::fmod(0.5 + a2 * i, 1.0)),
-                float(std::fmod(0.5 + a3 * i, 1.0)));
-}
 
 /// Distance from x along d to the plane of element j; 0 when x is not in front of it.
 float distance_to_plane(const Elements& e, int32_t j, const Vec3& x, const Vec3& d) {
@@ -73,7 +64,7 @@ void ZonalRowRenderer::row(int32_t x, ZonalRow& out) {
         const std::vector<int32_t>& item = zone_cube_.item_buffer();
         for (std::size_t p = 0; p < item.size(); ++p) {
             const Vec3 d = zone_cube_.cell_direction(p);
-            const Vec3 start = corner + zones_.edge[k] * r3_point(p);
+            const Vec3 start = corner + zones_.edge[k] * detail::r3_point(p);
             const int32_t j = item[p];
             const float t_max = j >= 0 ? distance_to_plane(elements_, j, start, d) : zone_cube_.cell_distance(p);
             const Channels tau = tracer_.trace(start, d, t_max, credits_);

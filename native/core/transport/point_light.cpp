@@ -90,6 +90,20 @@ Rgb point_unshadowed(const PointLight& light, const Vec3& x, const Vec3& normal)
     return light.intensity * (radiance_scale(light) * profile * detail::clipped_cone_cosine(cos_theta, v.sin2));
 }
 
+Rgb point_fluence(const PointLight& light, const Vec3& x) {
+    const View v = view_of(light, x);
+    if (!(v.distance > 0.0)) {  // at the centre: inside a sphere, or a disk's full half-space
+        if (light.radius <= 0.0f) return Rgb(0.0);
+        const double solid_angle = light.shape == LampShape::Sphere ? 4.0 * M_PI : 2.0 * M_PI;
+        return light.intensity * (radiance_scale(light) * solid_angle);
+    }
+    const double profile = spot_profile(light, Vec3(-v.axis));
+    if (light.radius <= 0.0f) return light.intensity * (profile / (v.distance * v.distance));
+    // 1 - cos = sin^2 / (1 + cos), without the cancellation of 1 - cos for a far lamp.
+    const double solid_angle = v.sin2 >= 1.0 ? 4.0 * M_PI : 2.0 * M_PI * v.sin2 / (1.0 + std::sqrt(1.0 - v.sin2));
+    return light.intensity * (radiance_scale(light) * solid_angle * profile);
+}
+
 int point_rays(const PointLight& light, const Vec3& x) {
     if (light.radius <= 0.0f) return 1;
     const double sin_sigma = std::sqrt(std::min(1.0, view_of(light, x).sin2));

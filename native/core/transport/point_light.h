@@ -44,6 +44,13 @@ float spot_profile(const PointLight& light, const Vec3& direction_from_light);
 /// along the cone's axis. Cheap: what lamps are chosen by.
 Rgb point_unshadowed(const PointLight& light, const Vec3& x, const Vec3& normal);
 
+/// The lamp's light arriving at `x` from every direction with nothing in between, radiance
+/// integrated over solid angle: what a medium at `x` takes up per unit of extinction
+/// (lamps_in_media.h). I profile / d^2 for a point; a sphere or disk gives its radiance
+/// I / (pi r^2) times the solid angle it fills, 2 pi (1 - cos), so a disk gives at most 2 I / r^2
+/// (at its centre) and a sphere 4 I / r^2 (inside it). Spots take their profile along the axis.
+Rgb point_fluence(const PointLight& light, const Vec3& x);
+
 /// How many shadow rays `x` needs for the lamp's soft shadow: 1 where it looks like a point, up
 /// to 64 within about its radius.
 int point_rays(const PointLight& light, const Vec3& x);

@@ -1,5 +1,6 @@
 """`_core.bake` with media and `_core.principled_volume` over the binding, against closed forms:
-Kirchhoff's isothermal enclosure, a scattering medium inside black emitting walls, and the
+Kirchhoff's isothermal enclosure, a scattering medium inside black emitting walls, a lamp in a closed
+foggy box, and the
 Principled Volume formula as Cycles' svm_node_principled_volume writes it."""
 import unittest
 
@@ -19,8 +20,8 @@ def fog(L0_emission, extinction, albedo, size=4, voxel=0.25):
 
 
 def bake(arrays, media, **settings):
-    return _core.bake(*arrays, element_size=0.5, resolution=32, tolerance=1e-7,
-                      media=media, zone_resolution=16, **settings)
+    keywords = dict(element_size=0.5, resolution=32, tolerance=1e-7, media=media, zone_resolution=16)
+    return _core.bake(*arrays, **dict(keywords, **settings))
 
 
 class IsothermalTest(unittest.TestCase):
@@ -132,10 +133,21 @@ class MediaInputTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "medium 0 voxel 0: albedo outside"):
             bake(arrays, [bright])
 
-    def test_lamps_are_refused_with_media(self):
-        lamp = {"type": "POINT", "position": (0.5, 0.5, 0.5), "intensity": (1.0, 1.0, 1.0)}
-        with self.assertRaisesRegex(ValueError, "not shot through media"):
-            bake(box_arrays(), [fog(0.0, 1.0, 0.5)], lights=[lamp])
+
+class LampInFogTest(unittest.TestCase):
+    def test_a_closed_box_reflects_rho_over_one_minus_rho_of_the_lamp(self):
+        # Walls reflect rho and the fog scatters Omega = rho: all of the lamp's 4 pi I is absorbed,
+        # 1 - rho of all the light that arrives anywhere, so pi (sum A L + sum w L_k) = rho / (1 - rho) 4 pi I.
+        rho, intensity = 0.6, np.array([1.0, 2.0, 0.5])
+        v, f, c, _, _ = box_arrays()
+        reflectance = np.full((6, 3), rho, np.float32)
+        lamp = {"type": "POINT", "position": (0.43, 0.52, 0.47), "intensity": tuple(intensity)}
+        r = bake((v, f, c, reflectance, np.zeros((6, 3), np.float32)), [fog(0.0, 1.0, rho)], lights=[lamp],
+                 element_size=0.125, resolution=64)
+        self.assertTrue(r["converged"])
+        leaving = np.pi * ((r["element_area"][:, None] * r["element_radiance"]).sum(axis=0)
+                           + (r["zone_weight"] * r["zone_radiance"]).sum(axis=0))
+        np.testing.assert_allclose(leaving, rho / (1.0 - rho) * 4.0 * np.pi * intensity, rtol=0.01)
 
 
 class PrincipledVolumeTest(unittest.TestCase):

@@ -199,7 +199,4 @@ TEST(ZonalBake, FogLitByTheCeilingGivesGridsAndColours) {
     }
     EXPECT_EQ(r.grids[0].emission[0], Rgb(0.0));  // voxel 0 is empty
     EXPECT_EQ(r.surfaces.colors.input_corner.size(), scene.corner_vertices.size());
-
-    settings.lights.points.push_back(PointLight{});
-    EXPECT_THROW(bake_with_media(scene.input(), {fog}, settings, 16), InputError);
 }

@@ -124,6 +124,45 @@ TEST(PointLight, DiskFacingThePointMatchesTheIntegralOverIt) {
     }
 }
 
+/// The light from every direction (a medium's, lamps_in_media.h): the lamp's radiance I / (pi r^2)
+/// times the solid angle it fills, integrated here over the disk's area (d A cos / s^2 in rings) and
+/// over the sphere's cone of directions; far away both are a point's I / d^2, and a spot's profile
+/// scales them.
+TEST(PointLight, FluenceIsTheRadianceTimesTheSolidAngleTheLampFills) {
+    const double r = 0.05, radiance = kIntensity / (M_PI * r * r);
+    for (double d : {0.02, 0.05, 0.1, 1.0}) {
+        const int n = 20000;
+        double disk = 0.0, sphere = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double rho = (i + 0.5) * r / n;  // a ring of the disk, facing the point
+            disk += 2.0 * M_PI * rho * (r / n) * d / std::pow(d * d + rho * rho, 1.5);
+            if (d > r) {
+                const double alpha = std::asin(r / d), theta = (i + 0.5) * alpha / n;
+                sphere += 2.0 * M_PI * std::sin(theta) * (alpha / n);
+            }
+        }
+        const Vec3 x(0.0f, 0.0f, float(d));
+        EXPECT_NEAR(point_fluence(lamp(LampShape::Disk, Vec3(0), float(r)), x).g / (radiance * disk), 1.0, 1e-6) << d;
+        if (d > r)
+            EXPECT_NEAR(point_fluence(lamp(LampShape::Sphere, Vec3(0), float(r)), x).g / (radiance * sphere), 1.0, 1e-6)
+                << d;
+    }
+    EXPECT_NEAR(point_fluence(lamp(LampShape::Sphere, Vec3(0), float(r)), Vec3(0.01f, 0, 0)).g, 4.0 * M_PI * radiance,
+                1e-6 * 4.0 * M_PI * radiance);
+    const Vec3 far(0.0f, 0.0f, -10.0f);
+    for (float radius : {0.0f, float(r)})
+        for (LampShape shape : {LampShape::Disk, LampShape::Sphere})
+            EXPECT_NEAR(point_fluence(lamp(shape, Vec3(0), radius), far).r, kIntensity / 100.0,
+                        1e-4 * kIntensity / 100.0);
+    PointLight spot = lamp(LampShape::Disk, Vec3(0), float(r));
+    spot.cos_half_angle = 0.5f;
+    spot.smooth = 0.2f;
+    const Vec3 off_axis = glm::normalize(Vec3(0.4f, 0.0f, -1.0f));
+    EXPECT_NEAR(point_fluence(spot, 10.0f * off_axis).b,
+                spot_profile(spot, off_axis) * point_fluence(lamp(LampShape::Disk, Vec3(0), float(r)), far).b,
+                1e-6 * 0.02);
+}
+
 TEST(PointLight, AHalfHiddenLampGivesHalfItsLight) {
     // A shelf at z = 0.05 over x > 0 hides the half of the lamp's cone with x > 0 from the origin.
     const auto shelf = scene_of({{0, -1, 0.05f}, {1, -1, 0.05f}, {1, 1, 0.05f}, {0, 1, 0.05f}});
