@@ -1,9 +1,9 @@
 /// @file test_lamps_in_media.cpp
 /// @brief Lamps in a bake with media against closed forms and exact balances: the light a fog cube
 /// takes up from a lamp inside it (integrated over directions by another route), one zone near and
-/// one far from the lamp, the zones near a lamp with a radius, the light on walls through the fog, and a closed box
-/// whose walls and fog reflect alike, where everything the lamp sends is absorbed after rho / (1 - rho) times as much
-/// has been reflected.
+/// one far from the lamp, the zones near a lamp with a radius, a sun through the fog's top, the light on walls through
+/// the fog, and a closed box whose walls and fog reflect alike, where everything the lamp sends is absorbed after rho /
+/// (1 - rho) times as much has been reflected.
 #include "bake/media_bake.h"
 #include "media/lamps_in_media.h"
 #include "testing/test_util.h"
@@ -72,10 +72,12 @@ double mean_attenuated_inverse_square(const glm::dvec3& x, const glm::dvec3& lo,
     return sum / (double(n) * n * n);
 }
 
+/// The zone holding `x` (inside a zone, not on its boundary).
 std::size_t zone_at(const Zones& zones, const Vec3& x) {
     for (std::size_t k = 0; k < zones.size(); ++k)
         if (glm::all(glm::lessThan(glm::abs(zones.centre[k] - x), Vec3(0.5f * zones.edge[k])))) return k;
-    return zones.size();
+    ADD_FAILURE() << "no zone holds " << x.x << " " << x.y << " " << x.z;
+    return 0;
 }
 
 PointLight lamp(double intensity) {
@@ -136,6 +138,27 @@ TEST(LampsInMedia, TheZoneAroundALampWithARadiusTakesItsDisksLight) {
             sum += std::exp(-kK * d) * 2.0 / (r * r) * (1.0 - d / std::sqrt(d * d + r * r));
         }
         EXPECT_NEAR(lit.zone_incident[k].g / (sum / (n * n * n) / (4.0 * M_PI)), 1.0, 0.005) << "zone " << k;
+    }
+}
+
+/// A sun of irradiance E shining through the top of the fog cube at 30 degrees: a zone whose rays
+/// towards the sun leave through the top takes E / (4 pi) times the mean over its height of
+/// exp(-K (2 - z) / cos 30), in closed form.
+TEST(LampsInMedia, TheSunLightsTheFogAsItsDepthTowardsTheSunSays) {
+    const std::vector<Medium> media{fog_cube(0.5)};
+    const Zones zones = build_zones(media);
+    const double tilt = M_PI / 6.0;
+    SunLight sun;
+    sun.direction = Vec3(float(std::sin(tilt)), 0.0f, float(-std::cos(tilt)));
+    sun.irradiance = Rgb(2.0);
+    Lights lights;
+    lights.suns.push_back(sun);
+    const LampsThroughMedia lit = lamps_through_media(Elements{}, lights, zones, MediumTracer(media, zones));
+    for (const Vec3& at : {Vec3(1.45f, 1.02f, 1.9f), Vec3(1.8f, 0.3f, 1.3f), Vec3(1.9f, 1.7f, 1.6f)}) {
+        const std::size_t k = zone_at(zones, at);
+        const double z0 = zones.centre[k].z - 0.0625, z1 = z0 + 0.125, a = kK / std::cos(tilt);
+        const double mean = (std::exp(-a * (2.0 - z1)) - std::exp(-a * (2.0 - z0))) / (a * 0.125);
+        EXPECT_NEAR(lit.zone_incident[k].r / (2.0 * mean / (4.0 * M_PI)), 1.0, 1e-3) << "zone " << k;
     }
 }
 
