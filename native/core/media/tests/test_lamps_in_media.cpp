@@ -1,9 +1,9 @@
 /// @file test_lamps_in_media.cpp
 /// @brief Lamps in a bake with media against closed forms and exact balances: the light a fog cube
 /// takes up from a lamp inside it (integrated over directions by another route), one zone near and
-/// one far from the lamp, the zones near a lamp with a radius, a sun through the fog's top, the light on walls through
-/// the fog, and a closed box whose walls and fog reflect alike, where everything the lamp sends is absorbed after rho /
-/// (1 - rho) times as much has been reflected.
+/// one far from the lamp, a spot's cone, the zones near a lamp with a radius, a sun through the fog's top, the light on
+/// walls through the fog, and a closed box whose walls and fog reflect alike, where everything the lamp sends is
+/// absorbed after rho / (1 - rho) times as much has been reflected.
 #include "bake/media_bake.h"
 #include "media/lamps_in_media.h"
 #include "testing/test_util.h"
@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <functional>
 
 using namespace radiosity;
 
@@ -41,9 +42,10 @@ double exit_distance(const glm::dvec3& x, const glm::dvec3& d, const glm::dvec3&
 }
 
 /// Integral over all directions of (1 - exp(-K l)), l the distance from `x` to the boundary of the
-/// box [lo, hi]: the fraction of a unit lamp's light that box of fog takes up, times 4 pi. A
-/// midpoint rule in (cos theta, phi), not the code's lattice.
-double taken_up_over_directions(const glm::dvec3& x, const glm::dvec3& lo, const glm::dvec3& hi) {
+/// box [lo, hi], each direction weighted by `profile` (1 without): the fraction of a unit lamp's light
+/// that box of fog takes up, times 4 pi. A midpoint rule in (cos theta, phi), not the code's lattice.
+double taken_up_over_directions(const glm::dvec3& x, const glm::dvec3& lo, const glm::dvec3& hi,
+                                const std::function<double(const glm::dvec3&)>& profile = {}) {
     const int n_z = 1500, n_phi = 3000;
     double sum = 0.0;
     for (int i = 0; i < n_z; ++i) {
@@ -51,7 +53,7 @@ double taken_up_over_directions(const glm::dvec3& x, const glm::dvec3& lo, const
         for (int j = 0; j < n_phi; ++j) {
             const double phi = (j + 0.5) * 2.0 * M_PI / n_phi;
             const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
-            sum += 1.0 - std::exp(-kK * exit_distance(x, d, lo, hi));
+            sum += (profile ? profile(d) : 1.0) * (1.0 - std::exp(-kK * exit_distance(x, d, lo, hi)));
         }
     }
     return sum * 4.0 * M_PI / (double(n_z) * n_phi);
@@ -114,6 +116,30 @@ TEST(LampsInMedia, AFogCubeTakesUpWhatItExtinguishes) {
     const glm::dvec3 far_lo = glm::dvec3(zones.centre[far]) - 0.0625;
     const double far_mean = mean_attenuated_inverse_square(x, far_lo, 0.125);
     EXPECT_NEAR(lit.zone_incident[far].b / (3.0 * far_mean / (4.0 * M_PI)), 1.0, 0.005);
+}
+
+/// A spot of 60 degrees with a soft edge, pointing down and sideways: the fog takes up what its
+/// profile sends, Cycles' smoothstep times the cosine to its axis.
+TEST(LampsInMedia, AFogCubeTakesUpWhatASpotSends) {
+    const std::vector<Medium> media{fog_cube(0.5)};
+    const Zones zones = build_zones(media);
+    PointLight spot = lamp(1.0);
+    spot.direction = glm::normalize(Vec3(0.3f, 0.2f, -1.0f));
+    spot.cos_half_angle = float(std::cos(M_PI / 6.0));
+    spot.smooth = 0.4f * (1.0f - spot.cos_half_angle);
+    Lights lights;
+    lights.points.push_back(spot);
+    const LampsThroughMedia lit = lamps_through_media(Elements{}, lights, zones, MediumTracer(media, zones));
+    double taken = 0.0;
+    for (std::size_t k = 0; k < zones.size(); ++k) taken += 4.0 * M_PI * kK * zones.volume(k) * lit.zone_incident[k].g;
+    const auto profile = [&](const glm::dvec3& d) {  // written out from Cycles' spot_attenuation
+        const double c = glm::dot(d, glm::dvec3(spot.direction)), t = c - spot.cos_half_angle;
+        if (t <= 0.0) return 0.0;
+        const double s = std::min(1.0, t / spot.smooth);
+        return c * s * s * (3.0 - 2.0 * s);
+    };
+    EXPECT_NEAR(taken / taken_up_over_directions(glm::dvec3(kLamp), glm::dvec3(0.0), glm::dvec3(2.0), profile), 1.0,
+                0.005);
 }
 
 /// A lamp of radius 0.1 m is, as in Cycles 3.x, a disk facing each point with radiance
