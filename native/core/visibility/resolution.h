@@ -7,7 +7,7 @@
 /// factor ~ 0.35 cells^-0.7, i.e. 13% at 4 cells, 8% at 8, 3% at 30.
 #pragma once
 
-#include "geometry/scene.h"
+#include <vector>
 
 namespace radiosity {
 
@@ -16,12 +16,13 @@ namespace radiosity {
 int resolution_for(double area, double distance, double cells);
 
 /// resolution_for the scene's small elements (the largest of the smallest elements that hold a
-/// tenth of the total area) at a typical distance (half the diagonal of the elements' bounding box).
-int recommended_resolution(const Elements& elements, double cells = 8.0);
+/// tenth of the total area, `area`) seen from `distance`, the distance at which the scene's surfaces
+/// see each other (sight_distance.h).
+int recommended_resolution(const std::vector<float>& area, double distance, double cells = 8.0);
 
 /// The smallest area that resolution N resolves as recommended_resolution judges it: an element of
-/// it, seen head-on from half the diagonal of the elements' bounding box, covers `cells` cells,
-/// A = cells (2 d / N)^2. Smaller emitters are better lit directly (BakeSettings::direct_emitter_area).
-double resolved_area(const Elements& elements, int resolution, double cells);
+/// it, seen head-on from `distance`, covers `cells` cells, A = cells (2 d / N)^2. Smaller emitters
+/// are better lit directly (BakeSettings::direct_emitter_area).
+double resolved_area(double distance, int resolution, double cells);
 
 }  // namespace radiosity

@@ -6,6 +6,7 @@
 #include "transport/near_field.h"
 #include "transport/row_renderer.h"
 #include "visibility/resolution.h"
+#include "visibility/sight_distance.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -73,8 +74,10 @@ TEST(Aliasing, SmallDistantPatchNeedsResolution) {
 
 TEST(Aliasing, RecommendedResolutionFollowsTheSmallElements) {
     const test::SceneArrays box = test::cornell_box();
-    const int coarse = recommended_resolution(build_elements(box.input(), 0.1f).elements);
-    const int fine = recommended_resolution(build_elements(box.input(), 0.03f).elements);
+    const Elements coarse_elements = build_elements(box.input(), 0.1f).elements;
+    const int coarse = recommended_resolution(coarse_elements.area, sight_distance(coarse_elements));
+    const Elements fine_elements = build_elements(box.input(), 0.03f).elements;
+    const int fine = recommended_resolution(fine_elements.area, sight_distance(fine_elements));
     std::printf("Cornell box: recommended resolution %d at 10 cm elements, %d at 3 cm\n", coarse, fine);
     EXPECT_LT(coarse, fine);
     EXPECT_GE(coarse, 32);
