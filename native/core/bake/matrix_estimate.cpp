@@ -45,8 +45,8 @@ MatrixEstimate estimate_matrix(const Elements& elements, const RowSettings& rows
     // Every row sampled: the count is exact.
     estimate.standard_error = fill.size() == n ? 0.0 : std::sqrt(variance / m);
     const auto N = static_cast<double>(std::max(rows.resolution, 0));
-    const double per_row = std::min({estimate.mean_fill + sampling.standard_errors * estimate.standard_error,
-                                     double(n), 3.0 * N * N});
+    const double per_row =
+        std::min({estimate.mean_fill + sampling.standard_errors * estimate.standard_error, double(n), 3.0 * N * N});
     estimate.nonzeros = static_cast<std::size_t>(std::ceil(per_row * double(n)));
     estimate.bytes = (n + 1) * sizeof(int64_t) + estimate.nonzeros * (sizeof(int32_t) + sizeof(float));
     return estimate;

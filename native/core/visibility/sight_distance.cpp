@@ -53,7 +53,7 @@ Vec3 cosine_direction(const Vec3& normal, std::size_t i) {
     const double v = std::fmod(0.5 + 0.5698402909980532 * double(i), 1.0);
     const double r = std::sqrt(u), phi = 2.0 * M_PI * v;
     const Vec3 t = glm::normalize(std::abs(normal.x) < 0.9f ? glm::cross(normal, Vec3(1, 0, 0))
-                                                           : glm::cross(normal, Vec3(0, 1, 0)));
+                                                            : glm::cross(normal, Vec3(0, 1, 0)));
     const Vec3 b = glm::cross(normal, t);
     const float z = float(std::sqrt(std::max(0.0, 1.0 - u)));
     return glm::normalize(float(r * std::cos(phi)) * t + float(r * std::sin(phi)) * b + z * normal);

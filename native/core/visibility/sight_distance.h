@@ -14,8 +14,8 @@
 namespace radiosity {
 
 struct SightSettings {
-    int points = 2048;     ///< points on the surfaces, stratified by area
-    int directions = 8;    ///< rays per point, cosine-weighted about the element's normal
+    int points = 2048;   ///< points on the surfaces, stratified by area
+    int directions = 8;  ///< rays per point, cosine-weighted about the element's normal
     /// The power mean's exponent. A factor's aliasing error goes as cells^-0.7 (resolution.h), and
     /// the cells an element covers as d^-2, so with the exponent 1.4 the factors' mean relative
     /// error over the rays equals that of every element seen from the returned distance.

@@ -1,6 +1,7 @@
 /// @file test_matrix_estimate.cpp
 /// @brief estimate_matrix against the nonzeros of the whole matrix, on a closed scene (the Cornell
 /// box) and an open one (a corner of walls and a block under an open sky).
+#include "bake/bake.h"
 #include "bake/matrix_estimate.h"
 #include "testing/test_util.h"
 #include "transport/form_factors.h"
@@ -18,14 +19,14 @@ namespace {
 test::SceneArrays open_corner() {
     test::SceneArrays s;
     const Rgb white(0.7);
-    s.add_quad({0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, white);                 // floor
-    s.add_quad({0, 4, 0}, {4, 4, 0}, {4, 4, 2}, {0, 4, 2}, white);                 // back wall, facing -y
-    s.add_quad({0, 0, 0}, {0, 4, 0}, {0, 4, 2}, {0, 0, 2}, white);                 // left wall, facing +x
-    s.add_quad({2, 1, 1}, {3, 1, 1}, {3, 2, 1}, {2, 2, 1}, white);                 // block: top
-    s.add_quad({2, 1, 0}, {3, 1, 0}, {3, 1, 1}, {2, 1, 1}, white);                 // front, facing -y
-    s.add_quad({3, 1, 0}, {3, 2, 0}, {3, 2, 1}, {3, 1, 1}, white);                 // right, facing +x
-    s.add_quad({3, 2, 0}, {2, 2, 0}, {2, 2, 1}, {3, 2, 1}, white);                 // back, facing +y
-    s.add_quad({2, 2, 0}, {2, 1, 0}, {2, 1, 1}, {2, 2, 1}, white);                 // left, facing -x
+    s.add_quad({0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, white);  // floor
+    s.add_quad({0, 4, 0}, {4, 4, 0}, {4, 4, 2}, {0, 4, 2}, white);  // back wall, facing -y
+    s.add_quad({0, 0, 0}, {0, 4, 0}, {0, 4, 2}, {0, 0, 2}, white);  // left wall, facing +x
+    s.add_quad({2, 1, 1}, {3, 1, 1}, {3, 2, 1}, {2, 2, 1}, white);  // block: top
+    s.add_quad({2, 1, 0}, {3, 1, 0}, {3, 1, 1}, {2, 1, 1}, white);  // front, facing -y
+    s.add_quad({3, 1, 0}, {3, 2, 0}, {3, 2, 1}, {3, 1, 1}, white);  // right, facing +x
+    s.add_quad({3, 2, 0}, {2, 2, 0}, {2, 2, 1}, {3, 2, 1}, white);  // back, facing +y
+    s.add_quad({2, 2, 0}, {2, 1, 0}, {2, 1, 1}, {2, 2, 1}, white);  // left, facing -x
     return s;
 }
 
@@ -41,10 +42,11 @@ Counted count(const test::SceneArrays& scene, float element_size, int resolution
     const SparseMatrix matrix = compute_form_factors(elements, rows);
     Counted counted{estimate_matrix(elements, rows), matrix.nonzeros(), matrix.bytes()};
     const MatrixEstimate& e = counted.estimate;
-    std::printf("%zu elements at %d: %zu nonzeros, estimated %.0f +- %.0f from %zu rows, with the margin %zu "
-                "(%.3f of the count)\n",
-                elements.size(), resolution, counted.nonzeros, e.mean_fill * elements.size(),
-                e.standard_error * elements.size(), e.rows_sampled, e.nonzeros, double(e.nonzeros) / counted.nonzeros);
+    std::printf(
+        "%zu elements at %d: %zu nonzeros, estimated %.0f +- %.0f from %zu rows, with the margin %zu "
+        "(%.3f of the count)\n",
+        elements.size(), resolution, counted.nonzeros, e.mean_fill * elements.size(),
+        e.standard_error * elements.size(), e.rows_sampled, e.nonzeros, double(e.nonzeros) / counted.nonzeros);
     return counted;
 }
 
@@ -86,6 +88,34 @@ TEST(MatrixEstimate, EveryRowSampledCountsExactly) {
     EXPECT_EQ(estimate.standard_error, 0.0);
     EXPECT_EQ(estimate.nonzeros, matrix.nonzeros());
     EXPECT_EQ(estimate.bytes, matrix.bytes());
+}
+
+TEST(MatrixEstimate, PlanAndBakeStoreWhatTheEstimateFits) {
+    // Budgets between the stored matrix and the bound: the core judges F by the estimate, and plan()
+    // and bake() agree on it; a byte under the matrix itself, the estimate (never under it) does not fit.
+    const test::SceneArrays corner = open_corner();
+    BakeSettings settings;
+    settings.element_size = 0.25f;
+    settings.resolution = 32;
+    const BakeResult stored = bake(corner.input(), settings);
+    ASSERT_TRUE(stored.matrix_stored);
+    const BakePlan roomy = plan(corner.input(), settings);
+    EXPECT_EQ(roomy.matrix_bytes_planned, roomy.matrix_bytes_bound);  // within the budget: no sample needed
+    for (const double share : {0.8, 0.5}) {  // of the bound, over the matrix stored (0.38 of it)
+        settings.matrix_budget_bytes = std::size_t(share * double(roomy.matrix_bytes_bound));
+        const BakePlan planned = plan(corner.input(), settings);
+        std::printf("budget %zu: stored %zu bytes, bound %zu, planned %zu\n", settings.matrix_budget_bytes,
+                    stored.matrix_bytes, planned.matrix_bytes_bound, planned.matrix_bytes_planned);
+        EXPECT_GE(planned.matrix_bytes_planned, stored.matrix_bytes);
+        EXPECT_LE(double(planned.matrix_bytes_planned), 1.25 * double(stored.matrix_bytes));
+        EXPECT_TRUE(planned.matrix_stored);
+        const BakeResult baked = bake(corner.input(), settings);
+        EXPECT_TRUE(baked.matrix_stored);
+        EXPECT_EQ(baked.matrix_bytes, stored.matrix_bytes);
+    }
+    settings.matrix_budget_bytes = stored.matrix_bytes - 1;
+    EXPECT_FALSE(plan(corner.input(), settings).matrix_stored);
+    EXPECT_FALSE(bake(corner.input(), settings).matrix_stored);
 }
 
 }  // namespace
