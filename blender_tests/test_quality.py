@@ -26,12 +26,8 @@ ui = sys.modules[harness.MODULE + ".ui"]
 # hemi-cube cells the smallest elements must cover, tolerance).
 # (element size as a share of the scene's size, cells, tolerance) with the final gather (the default)
 # and without it.
-# (element size / scene size, cells at the sight distance, tolerance, cells at half the diagonal that
-# the presets were tuned at and that give the Cornell box the same resolution).
-DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 14.4, 1e-3, 4), "MEDIUM": (1 / 16, 14.4, 1e-4, 4),
-                      "HIGH": (1 / 32, 14.4, 1e-5, 4)}
-UNGATHERED_PRESETS = {"DRAFT": (1 / 16, 14.4, 1e-3, 4), "MEDIUM": (1 / 32, 21.6, 1e-4, 6),
-                      "HIGH": (1 / 48, 28.8, 1e-5, 8)}
+DOCUMENTED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 16, 4, 1e-4), "HIGH": (1 / 32, 4, 1e-5)}
+UNGATHERED_PRESETS = {"DRAFT": (1 / 16, 4, 1e-3), "MEDIUM": (1 / 32, 6, 1e-4), "HIGH": (1 / 48, 8, 1e-5)}
 
 
 def surface_area(obj):
@@ -60,7 +56,7 @@ def test_presets_map_to_settings():
     assert settings.quality == "MEDIUM" and settings.final_gather, "an artist starts from Medium, gathered"
     presets = [(quality, True, preset) for quality, preset in DOCUMENTED_PRESETS.items()]
     presets += [(quality, False, preset) for quality, preset in UNGATHERED_PRESETS.items()]
-    for quality, gathered, (fraction, cells, tolerance, tuned_cells) in presets:
+    for quality, gathered, (fraction, cells, tolerance) in presets:
         settings.quality, settings.final_gather = quality, gathered
         choice = job_for(bpy.context.scene).choice
         assert (choice.gather_rays > 0) == gathered, choice
@@ -69,17 +65,13 @@ def test_presets_map_to_settings():
                  choice.elements, choice.method))
         assert abs(choice.element_size - fraction * size) < 1e-6 * size, choice
         # The walls' faces (1/8 m) split into whole elements, the smallest holding a tenth of the area among
-        # them; seen from the distance the box's surfaces see each other at (Cauchy's mean chord of
-        # the closed cube is 2/3 m; open at the front and with the blocks, the power mean is less).
-        assert 0.42 < choice.sight_distance < 0.5, choice
+        # them; seen from half the 1 m cube's diagonal.
         face = 1 / scenes.CORNELL_CELLS
         wall_element = face / math.ceil(face / choice.element_size)
-        resolution = max(32, even_resolution(choice.sight_distance, wall_element ** 2, cells))  # the core's least
+        resolution = max(32, even_resolution(0.5 * math.sqrt(3), wall_element ** 2, cells))  # the core's least
         assert (choice.resolution, choice.hemicube_rotations, choice.tolerance, choice.method) == (
             resolution, 1, tolerance, "gauss_seidel"), (choice, resolution)
-        # The resolution the presets were tuned at, from half the cube's diagonal.
-        assert resolution == max(32, even_resolution(0.5 * math.sqrt(3), wall_element ** 2, tuned_cells)), choice
-        reason = "smallest elements holding a tenth of their area cover %g cells" % cells
+        reason = "smallest elements holding a tenth of their area cover %d cells" % cells
         assert reason in choice.resolution_reason, choice
         # About 6 / fraction^2 elements whatever the shape (faces split into whole elements: more).
         assert 6 / fraction ** 2 <= choice.elements <= 1.3 * 6 / fraction ** 2, choice.elements
@@ -134,8 +126,9 @@ def test_automatic_method_follows_the_memory_budget():
     # groups): close to the stored solve, not equal (docs/hierarchy.md).
     difference = np.sqrt(np.mean((hierarchical - stored) ** 2)) / np.sqrt(np.mean(stored ** 2))
     print("%d elements, bound %d bytes, stored %d bytes; budget %d and %d MB: Gauss-Seidel; %d MB: hierarchical "
-          "(%d leaves), %.2f%% RMS from the stored solve" % (elements, bound, actual, fits_mb, between_mb, too_small_mb,
-                                                             summary["hierarchy"]["leaves"], 100 * difference))
+          "(%d leaves), %.2f%% RMS from the stored solve"
+          % (elements, bound, actual, fits_mb, between_mb, too_small_mb, summary["hierarchy"]["leaves"],
+             100 * difference))
     assert 0 < difference < 0.05
 
     # The batch command takes the same budget.
@@ -292,7 +285,7 @@ def floor_error(obj, lamp, rho, radiance):
 
 
 LAMP_HEIGHT, FLOOR_RHO, LAMP_RADIANCE = 1.5, 0.5, 1000.0
-# Half the diagonal of the 2 x 2 x 1.5 m scene: about the distance the floor sees the lamp from.
+# Half the diagonal of the 2 x 2 x 1.5 m scene: where recommended_resolution sees the lamp from.
 LAMP_SCENE_HALF_DIAGONAL = 0.5 * math.sqrt(2 ** 2 + 2 ** 2 + LAMP_HEIGHT ** 2)
 
 
@@ -315,9 +308,8 @@ def test_small_distant_lamp_is_lit_directly():
     assert choice.direct_emitters == 2, choice  # the lamp's two sides
     assert bpy.ops.radiosity.bake() == {"FINISHED"}
     direct = floor_error(obj, lamp, FLOOR_RHO, LAMP_RADIANCE)
-    reason = "Hemi-cube resolution %d: the smallest elements holding a tenth of their area cover 14.4 cells from " \
-             "%.3g m, the distance the surfaces see each other at; 2 small emitting elements light the scene " \
-             "directly" % (resolution, choice.sight_distance)
+    reason = "Hemi-cube resolution %d: the smallest elements holding a tenth of their area cover 4 cells from " \
+             "half the scene's diagonal; 2 small emitting elements light the scene directly" % resolution
     assert reason in settings.last_accuracy, settings.last_accuracy
     element_size = choice.element_size
 

@@ -186,7 +186,7 @@ class BakeJob:
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
             "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,
-            "resolution_reason": c.resolution_reason, "sight_distance": c.sight_distance,
+            "resolution_reason": c.resolution_reason, "resolution_distance": c.resolution_distance,
             "near_field": c.near_field, "gather_rays": c.gather_rays,
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
             "matrix_bytes_bound": c.matrix_bytes_bound, "matrix_bytes_planned": c.matrix_bytes_planned,

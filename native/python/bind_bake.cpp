@@ -96,6 +96,7 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     out["matrix_bytes_planned"] = planned.matrix_bytes_planned;
     out["matrix_stored"] = planned.matrix_stored;
     out["sight_distance"] = planned.sight_distance;
+    out["resolution_distance"] = planned.resolution_distance;
     return out;
 }
 
@@ -172,8 +173,9 @@ void bind_bake(py::module_& m) {
           "matrix_bytes_bound, matrix_bytes_planned (uniform methods: the bound when it fits matrix_budget_bytes, "
           "else the bytes estimated from a sample of the matrix's rows at the settings' resolution, with a margin of "
           "3 standard errors), matrix_stored (the planned bytes fit the budget: the form factors are stored, else "
-          "rendered on demand) and sight_distance (the power mean of the hit distances of cosine-weighted rays from "
-          "area-stratified points: the distance the resolution is judged from). Takes bake()'s settings.",
+          "rendered on demand), sight_distance (the power mean of the hit distances of cosine-weighted rays from "
+          "area-stratified points) and resolution_distance (the distance the resolution is judged from: "
+          "1.9 x sight_distance, at most half the diagonal of the elements' bounding box). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "textures"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
@@ -186,11 +188,12 @@ void bind_bake(py::module_& m) {
           "layers"_a, "elements"_a, "corners"_a);
     m.def("recommended_resolution", &recommended_resolution_arrays,
           "Even hemi-cube resolution in [32, 1024] at which the smallest elements holding a tenth of element_area's "
-          "total, seen head-on from `distance` (plan()'s sight_distance), cover `cells` cells: 2 d sqrt(cells / A).",
+          "total, seen head-on from `distance` (plan()'s resolution_distance), cover `cells` cells: 2 d sqrt(cells / "
+          "A).",
           "element_area"_a, "distance"_a, "cells"_a = 8.0);
     m.def("resolved_area", &resolved_area_arrays,
           "The area an element must have to cover `cells` cells of a hemi-cube of `resolution`, seen head-on from "
-          "`distance` (plan()'s sight_distance): cells (2 d / N)^2 (recommended_resolution inverted).",
+          "`distance` (plan()'s resolution_distance): cells (2 d / N)^2 (recommended_resolution inverted).",
           "distance"_a, "resolution"_a, "cells"_a);
     m.attr("DEFAULT_MATRIX_BUDGET_BYTES") = BakeSettings().matrix_budget_bytes;
 }

@@ -1,6 +1,6 @@
 """The artist's Quality and the Automatic method as concrete bake settings: element size from the
 scene's size, resolution from the elements the scene is made of and the distance they see each
-other at (the core's recommended_resolution and plan's sight_distance), tolerance from the preset,
+other at (the core's recommended_resolution and plan's resolution_distance), tolerance from the preset,
 method from the core's own memory model (plan's matrix_bytes_planned) and the memory budget. No
 bpy: numbers from the exported arrays only."""
 
@@ -54,12 +54,11 @@ class Preset:
 
 
 # Cells: the smallest elements (and emitting elements) holding a tenth of their area, seen head-on
-# from the distance the surfaces see each other at (plan's sight_distance: 0.457 m on the 1 m Cornell
-# box, 5.6 m on the level q3dm6ish, whose half diagonal is 30 m), cover this many cells; their
-# factors then alias by about 0.35 cells^-0.7 RMS (5.3%, 4.1%, 3.3%). The presets were tuned at
-# 4, 6 and 8 cells seen from half the scene's diagonal (0.866 m on the box); 3.6 = (0.866 / 0.457)^2
-# times those keeps the box's resolutions (56, 136 and 236; gathered 56 and 112) and its accuracy,
-# while a level's rooms, far smaller than its diagonal, no longer pay for its size.
+# from plan's resolution_distance, cover this many cells; their factors then alias by about 0.35
+# cells^-0.7 RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236. That
+# distance is half the scene's diagonal, where the presets were tuned, or 1.9 times the distance the
+# surfaces see each other at where that is less (the core's resolution.h): a game level's rooms,
+# far smaller than its diagonal, no longer pay for its size.
 # Near field, measured against Cycles (docs/accuracy.md): a slab 5 mm over a floor, corners under
 # and around it, Medium 7.5% -> 5.6% RMS and High 7.9% -> 7.1% with it, at the same time; the
 # Cornell box unchanged. At Draft's resolution it made the slab worse (15.7% -> 16.5%, bias +9% ->
@@ -82,12 +81,12 @@ class Preset:
 # CPU time at 4x4; a = 0.2 1.21%, 1.24%, 0.73% for little less. High keeps more margin under its
 # 0.75% target with a = 0.1 (docs/benchmarks.md, the Cornell box subdivided). Draft is not shared.
 PRESETS = {
-    "DRAFT": Preset(16, 14.4, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 14.4, near_field=False, rays=256)),
-    "MEDIUM": Preset(32, 21.6, 1e-4, 0.02, near_field=True,
-                     gathered=Gathered(16, 14.4, near_field=True, rays=3136, field_rays=64, shadow_rays=256,
+    "DRAFT": Preset(16, 4.0, 1e-3, 0.05, near_field=False, gathered=Gathered(16, 4.0, near_field=False, rays=256)),
+    "MEDIUM": Preset(32, 6.0, 1e-4, 0.02, near_field=True,
+                     gathered=Gathered(16, 4.0, near_field=True, rays=3136, field_rays=64, shadow_rays=256,
                                        cache_accuracy=0.15)),
-    "HIGH": Preset(48, 28.8, 1e-5, 0.01, near_field=True,
-                   gathered=Gathered(32, 14.4, near_field=True, rays=6400, field_rays=64, shadow_rays=256,
+    "HIGH": Preset(48, 8.0, 1e-5, 0.01, near_field=True,
+                   gathered=Gathered(32, 4.0, near_field=True, rays=6400, field_rays=64, shadow_rays=256,
                                      cache_accuracy=0.1)),
 }
 # Custom quality's final gather.
@@ -119,7 +118,7 @@ class Choice:
     max_element_aspect: float   # 0 = slivers kept (the zonal bake does not cut them)
     hemicube_rotations: int     # hemi-cubes per element, turned about the normal (1 = one)
     resolution_reason: str      # why this resolution, in words for the summary
-    sight_distance: float       # metres: the distance the surfaces see each other at, the resolution's
+    resolution_distance: float  # metres: what the resolution is judged from (plan's resolution_distance)
     near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
     gather_field_rays: int = 0  # its rays per element vertex for the field the corners read (0: none)
@@ -170,7 +169,7 @@ def direct_emitter_area(layout, emitting, resolution, preset):
     elements directly, the smallest first within DIRECT_EMITTER_PAIRS emitter-element pairs: (area
     bound, how many)."""
     area = layout["element_area"]
-    bound = native.core().resolved_area(layout["sight_distance"], resolution, preset.cells)
+    bound = native.core().resolved_area(layout["resolution_distance"], resolution, preset.cells)
     small = np.sort(area[emitting & (area < bound)])
     most = DIRECT_EMITTER_PAIRS // max(1, len(solved_areas(layout)))
     if len(small) > most:  # the largest of them go back to the hemi-cube
@@ -181,19 +180,20 @@ def direct_emitter_area(layout, emitting, resolution, preset):
 
 def preset_resolution(layout, emitting, preset, zonal=False):
     """The Resolution at which the smallest elements, and emitting elements, holding a tenth of their
-    area (a small lamp aliases most visibly: blotchy light) cover `preset.cells` cells seen from the
-    distance the surfaces see each other at (`_core.recommended_resolution`, plan's sight_distance).
+    area (a small lamp aliases most visibly: blotchy light) cover `preset.cells` cells seen from
+    plan's resolution_distance (`_core.recommended_resolution`).
     Emitting elements that resolution resolves poorly light the elements directly instead
     (direct_emitter_area; not in the zonal bake).
     Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
-    area, distance, solved = layout["element_area"], layout["sight_distance"], solved_areas(layout)
+    area, distance, solved = layout["element_area"], layout["resolution_distance"], solved_areas(layout)
     direct = (0.0, 0)
     if not zonal and emitting.any():
         direct = direct_emitter_area(layout, emitting, core.recommended_resolution(solved, distance, preset.cells),
                                      preset)
         emitting = emitting & ~(area < direct[0])
-    found = _resolution_for_groups(core, solved, area[emitting], distance, preset, zonal)
+    seen_from = _seen_from(layout)
+    found = _resolution_for_groups(core, solved, area[emitting], distance, seen_from, preset, zonal)
     if not direct[1]:
         return found
     reason = found.reason + "; %d small emitting element%s light the scene directly" % (
@@ -207,22 +207,29 @@ def solved_areas(layout):
     return layout.get("solve_element_area", layout["element_area"])
 
 
-def _resolution_for_groups(core, area, emitting_area, distance, preset, zonal):
+def _seen_from(layout):
+    """Where the resolution is judged from, in words for the summary."""
+    half_diagonal = 0.5 * float(np.linalg.norm(np.ptp(layout["element_vertices"], axis=0)))
+    if layout["resolution_distance"] < 0.999 * half_diagonal:
+        return "%.3g m, 1.9 times the distance the surfaces see each other at" % layout["resolution_distance"]
+    return "half the scene's diagonal"
+
+
+def _resolution_for_groups(core, area, emitting_area, distance, seen_from, preset, zonal):
     groups = [("elements", area)] + ([("emitting elements", emitting_area)] if len(emitting_area) else [])
     wanted = [(core.recommended_resolution(a, distance, preset.cells), name, a) for name, a in groups]
     resolution, name, driving = max(wanted, key=lambda w: w[0])
     if resolution < MAX_RESOLUTION:
-        return Resolution(resolution, 1, "the smallest %s holding a tenth of their area cover %g cells from %.3g m, "
-                                         "the distance the surfaces see each other at" % (name, preset.cells, distance))
+        return Resolution(resolution, 1, "the smallest %s holding a tenth of their area cover %g cells from %s"
+                          % (name, preset.cells, seen_from))
     # N grows as sqrt(cells): a quarter of the cells asks for N / 2. Halve until inside the core's range.
     scale = 2
     while core.recommended_resolution(driving, distance, preset.cells / scale ** 2) >= MAX_RESOLUTION and scale < 64:
         scale *= 2
     needed = scale * core.recommended_resolution(driving, distance, preset.cells / scale ** 2)
     rotations = 1 if zonal else min(MAX_ROTATIONS, math.ceil((needed / MAX_RESOLUTION) ** ROTATION_EXPONENT))
-    reason = "the smallest %s holding a tenth of their area would need %d to cover %g cells from %.3g m, the " \
-             "distance the surfaces see each other at, capped at %d" % (
-                 name, needed, preset.cells, distance, MAX_RESOLUTION)
+    reason = "the smallest %s holding a tenth of their area would need %d to cover %g cells from %s, capped at " \
+             "%d" % (name, needed, preset.cells, seen_from, MAX_RESOLUTION)
     if rotations > 1:
         reason += ", %d hemi-cubes turned about the normal" % rotations
     return Resolution(MAX_RESOLUTION, rotations, reason)
@@ -305,7 +312,8 @@ def _choose(settings, exported, media, size, preset, gathered):
                   elements=elements, scene_size=size, matrix_bytes_bound=bound, matrix_bytes_planned=planned,
                   budget_bytes=budget,
                   max_element_aspect=max_element_aspect, hemicube_rotations=chosen.rotations,
-                  resolution_reason=chosen.reason, sight_distance=float(layout["sight_distance"]),
+                  resolution_reason=chosen.reason,
+                  resolution_distance=float(layout["resolution_distance"]),
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
                   gather_rays=rays if gather else 0, gather_field_rays=field_rays if gather else 0,

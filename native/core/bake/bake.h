@@ -178,9 +178,10 @@ struct BakePlan {
     /// (matrix_estimate.h); media bakes: the bound.
     std::size_t matrix_bytes_planned = 0;
     bool matrix_stored = false;  ///< uniform bakes: matrix_bytes_planned fits the budget (media bakes always store)
-    /// The distance at which the elements see each other (sight_distance.h): what the hemi-cube's
-    /// resolution is judged from (resolution.h).
-    double sight_distance = 0.0;
+    /// The distance at which the elements see each other (sight_distance.h), and the one the
+    /// hemi-cube's resolution is judged from (resolution_distance, resolution.h): 1.9 times that, at
+    /// most half the diagonal of the elements' bounding box.
+    double sight_distance = 0.0, resolution_distance = 0.0;
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at

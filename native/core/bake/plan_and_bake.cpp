@@ -5,6 +5,7 @@
 #include "bake/media_bake.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
+#include "visibility/resolution.h"
 #include "visibility/sight_distance.h"
 
 #include <utility>
@@ -84,6 +85,16 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings) {
 
 }  // namespace detail
 
+namespace {
+
+/// The distances the hemi-cube's resolution is judged from (bake.h's BakePlan).
+void distances(BakePlan& plan) {
+    plan.sight_distance = sight_distance(plan.build.elements);
+    plan.resolution_distance = resolution_distance(plan.sight_distance, half_diagonal(plan.build.elements));
+}
+
+}  // namespace
+
 BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     check(settings);
     BakePlan plan;
@@ -91,12 +102,12 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
         plan.solve_element_area = plan.build.elements.area;
         plan.solve_elements = plan.solve_element_area.size();
-        plan.sight_distance = sight_distance(plan.build.elements);
+        distances(plan);
         return plan;
     }
     plan.build =
         with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
-    plan.sight_distance = sight_distance(plan.build.elements);
+    distances(plan);
     if (with_media(settings)) {  // the media bake always stores its matrix (or refuses to bake beyond the budget)
         plan.solve_element_area = plan.build.elements.area;
         plan.solve_elements = plan.solve_element_area.size();

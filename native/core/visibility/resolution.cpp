@@ -13,6 +13,10 @@ int resolution_for(double area, double distance, double cells) {
     return 2 * static_cast<int>(std::ceil(n / 2.0));
 }
 
+double resolution_distance(double sight_distance, double half_diagonal) {
+    return std::min(half_diagonal, kSightToResolution * sight_distance);
+}
+
 int recommended_resolution(const std::vector<float>& element_area, double distance, double cells) {
     if (element_area.empty()) return 32;
     // The smallest elements that hold a tenth of the surface, not a tenth by count: a prop made of

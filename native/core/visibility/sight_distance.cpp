@@ -72,7 +72,8 @@ double sight_distance(const Elements& elements, const SightSettings& settings) {
     for (const int32_t e : stratified_by_area(elements, kept, settings.points))
         for (int d = 0; d < settings.directions; ++d, ++i) {
             const auto hit = rays.first_hit(elements.centre[e], cosine_direction(elements.normal[e], i), rays.gap());
-            if (hit.patch < 0) continue;
+            const bool near = settings.skip_near_hits && hit.distance < std::sqrt(elements.area[e]);
+            if (hit.patch < 0 || near) continue;
             sum += std::pow(double(hit.distance), settings.exponent);
             ++hits;
         }

@@ -20,12 +20,16 @@ struct SightSettings {
     /// the cells an element covers as d^-2, so with the exponent 1.4 the factors' mean relative
     /// error over the rays equals that of every element seen from the returned distance.
     double exponent = 1.4;
+    /// Leave out hits nearer than the sending element's size (see sight_distance).
+    bool skip_near_hits = true;
 };
 
 /// The power mean (SightSettings::exponent) of the hit distances of rays from the elements'
-/// centres over their fronts; rays that leave the scene see nothing and do not count. Lamps'
+/// centres over their fronts. Rays that leave the scene see nothing, and hits nearer than the
+/// sending element's size (sqrt of its area) alias nothing (what lies that near covers a large
+/// part of the hemi-cube; the near-field correction replaces those factors): neither counts. Lamps'
 /// elements (Elements::lamp) neither send nor stop rays. Half the diagonal of the elements'
-/// bounding box when no ray hits (a single plane), 0 without elements.
+/// bounding box when no ray counts (a single plane), 0 without elements.
 double sight_distance(const Elements& elements, const SightSettings& settings = {});
 
 /// Half the diagonal of the bounding box of the elements' vertices (0 without any).

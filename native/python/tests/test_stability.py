@@ -108,7 +108,7 @@ class StabilitySettingsTest(unittest.TestCase):
 
 class RecommendedResolutionTest(unittest.TestCase):
     """N = 2 d sqrt(cells / A) for A the largest of the smallest elements that hold a tenth of the area,
-    seen from the plan's sight_distance d, even, within [32, 1024] (docs/stability.md), computed here
+    seen from the plan's resolution_distance d, even, within [32, 1024] (docs/stability.md), computed here
     from the geometry."""
 
     @staticmethod
@@ -119,10 +119,11 @@ class RecommendedResolutionTest(unittest.TestCase):
         return _core.plan(v, offsets, corners, reflectance, emission, element_size=element_size)
 
     def test_unit_cube_at_10_cm_and_3_cm(self):
-        for element_size, per_side, expected in ((0.1, 10, 42), (0.03, 34, 138)):
+        d = 0.5 * math.sqrt(3.0)  # 1.9 x its sight distance is more: half the diagonal
+        for element_size, per_side, expected in ((0.1, 10, 50), (0.03, 34, 168)):
             layout = self.cube(element_size)
             self.assertEqual(layout["elements"], 2 * 6 * per_side ** 2)  # the emitting walls' back sides too
-            d = layout["sight_distance"]
+            self.assertAlmostEqual(layout["resolution_distance"], d, places=6)
             exact = 2 * d * math.sqrt(8.0 / (1.0 / per_side) ** 2)
             self.assertEqual(expected, 2 * math.ceil(exact / 2))
             self.assertEqual(_core.recommended_resolution(layout["element_area"], d), expected)
@@ -131,25 +132,23 @@ class RecommendedResolutionTest(unittest.TestCase):
                              max(32, 2 * math.ceil(exact / 4)))
 
     def test_sight_distance_of_the_cube_is_its_chords(self):
-        """The power mean (1.4) of the chords of a unit cube from its walls, cosine-weighted: between
-        Cauchy's mean chord 4 V / S = 2/3 and the longest chord sqrt(3), and the same whatever the
-        elements (the 3 cm elements' sample lies on other points of the same walls)."""
+        """The power mean (1.4) of the chords of a unit cube from its walls, cosine-weighted, those
+        shorter than the sending element left out: more than Cauchy's mean chord 4 V / S = 2/3, less
+        than the longest chord sqrt(3), and the same whatever the elements."""
         coarse, fine = self.cube(0.1)["sight_distance"], self.cube(0.03)["sight_distance"]
         self.assertGreater(coarse, 2.0 / 3.0)
-        self.assertLess(coarse, 0.8)
-        self.assertAlmostEqual(coarse, fine, delta=0.02)
+        self.assertLess(coarse, 0.85)
+        self.assertAlmostEqual(coarse, fine, delta=0.03)
 
     def test_resolved_area_inverts_the_resolution(self):
-        """A = cells (2 d / N)^2: the resolution the cube's 10 cm elements (0.01 m^2) are given
-        resolves them with the 8 cells they were chosen for, to N's rounding."""
-        layout = self.cube(0.1)
-        d = layout["sight_distance"]
+        """A = cells (2 d / N)^2: at N = 50 the unit cube's 10 cm elements (0.01 m^2) are resolved with
+        the 8 cells they were chosen for, to N's rounding (exact N = 48.99)."""
+        d = self.cube(0.1)["resolution_distance"]
         for resolution, cells in ((50, 8.0), (128, 6.0)):
             self.assertAlmostEqual(_core.resolved_area(d, resolution, cells), cells * (2 * d / resolution) ** 2,
                                    places=9)
-        chosen = _core.recommended_resolution(layout["element_area"], d)
-        self.assertLess(_core.resolved_area(d, chosen, 8.0), 0.01)
-        self.assertGreater(_core.resolved_area(d, chosen - 2, 8.0), 0.01)
+        self.assertLess(_core.resolved_area(d, 50, 8.0), 0.01)
+        self.assertGreater(_core.resolved_area(d, 48, 8.0), 0.01)
         with self.assertRaises(_core.InputError):
             _core.resolved_area(d, 0, 8.0)
         with self.assertRaises(_core.InputError):
