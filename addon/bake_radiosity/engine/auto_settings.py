@@ -285,15 +285,13 @@ def _choose(settings, exported, media, size, preset, gathered):
         emitting = exported.emission[layout["element_polygon"]].max(axis=1) > 0.0
         chosen = preset_resolution(layout, emitting, preset, zonal)
     resolution = chosen.resolution
-    bound = int(core.matrix_bytes_bound(unknowns, resolution))
     budget = int(settings["memory_budget"]) * MEBIBYTE
-    planned = bound
-    if bound > budget and not zonal:
-        # The core's estimate from a sample of F's rows, rendered as the bake will render them.
-        planned = int(core.plan(*exported.scene_arrays(), front_only=exported.front_only, element_size=element_size,
-                                max_element_aspect=max_element_aspect, resolution=resolution,
-                                hemicube_rotations=chosen.rotations, near_field=near_field,
-                                matrix_budget_bytes=budget)["matrix_bytes_planned"])
+    if zonal:
+        bound = planned = int(core.matrix_bytes_bound(unknowns, resolution))
+    else:
+        bound, planned = _matrix_bytes(core, exported, budget, element_size=element_size,
+                                       max_element_aspect=max_element_aspect, resolution=resolution,
+                                       hemicube_rotations=chosen.rotations, near_field=near_field)
     if preset is None and settings["method"] != "AUTO":
         method = CORE_METHODS[settings["method"]]
     else:
@@ -319,6 +317,15 @@ def _choose(settings, exported, media, size, preset, gathered):
                   gather_rays=rays if gather else 0, gather_field_rays=field_rays if gather else 0,
                   gather_shadow_rays=shadow_rays, gather_cache_accuracy=cache_accuracy if gather else 0.0,
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
+
+
+def _matrix_bytes(core, exported, budget, **keywords):
+    """The core's bound and planned bytes (plan's matrix_bytes_bound and matrix_bytes_planned: beyond
+    the budget, estimated from a sample of F's rows rendered as the bake will render them) of F over
+    the elements the bake will solve: with the lamps, beside which faces keep elements of their own."""
+    planned = core.plan(*exported.scene_arrays(), front_only=exported.front_only, lights=exported.lights,
+                        matrix_budget_bytes=budget, **keywords)
+    return int(planned["matrix_bytes_bound"]), int(planned["matrix_bytes_planned"])
 
 
 def warnings_for(choice):
