@@ -67,9 +67,9 @@ class BakeJob:
         world_group = getattr(scene.world, "lightgroup", "") if self.world_baked() else None
         layers = light_groups.layers_of(e.light_group_names, e.polygon_light_group, e.emission, e.lamp_light_groups,
                                         world_group, [g.name for g in getattr(view_layer, "lightgroups", ())])
-        stored = c.method != "hierarchical" and c.matrix_bytes_bound <= c.budget_bytes
+        stored = c.method != "hierarchical" and c.matrix_bytes_planned <= c.budget_bytes
         refusal = light_groups.refusal(layers, c.method, bool(self.media.media), c.gather_rays > 0,
-                                       c.matrix_bytes_bound if stored else 0, c.elements, len(e.corner_vertices),
+                                       c.matrix_bytes_planned if stored else 0, c.elements, len(e.corner_vertices),
                                        c.budget_bytes)
         if refusal:
             self.warnings.append(refusal)
@@ -183,9 +183,11 @@ class BakeJob:
             "residual": r["residual"], "converged": r["converged"], "method": self.method,
             "quality": self.settings["quality"], "element_size": c.element_size, "resolution": c.resolution,
             "tolerance": c.tolerance, "scene_size": c.scene_size, "hemicube_rotations": c.hemicube_rotations,
-            "resolution_reason": c.resolution_reason, "near_field": c.near_field, "gather_rays": c.gather_rays,
+            "resolution_reason": c.resolution_reason, "resolution_distance": c.resolution_distance,
+            "near_field": c.near_field, "gather_rays": c.gather_rays,
             "matrix_stored": r["matrix_stored"], "matrix_bytes": r["matrix_bytes"],
-            "matrix_bytes_bound": c.matrix_bytes_bound, "memory_budget_bytes": c.budget_bytes,
+            "matrix_bytes_bound": c.matrix_bytes_bound, "matrix_bytes_planned": c.matrix_bytes_planned,
+            "memory_budget_bytes": c.budget_bytes,
             "energy": {"emitted": power.emitted, "absorbed": power.absorbed, "lost": power.lost,
                        "created": power.created, "leaving": power.leaving,
                        "absorbed_fraction": power.absorbed_fraction},

@@ -82,7 +82,8 @@ def main():
             with harness.Stopwatch() as seconds:
                 summary = addon.bake(bpy.context.scene, quality="MEDIUM")
         baked = luminance_per_vertex(obj.data, harness.corner_colors(obj.data, "Radiosity"))
-        report("%s (%d elements, %s)" % (variant, summary["elements"], summary["method"]), baked,
+        report("%s (%d elements, %s, resolution %d)" % (variant, summary["elements"], summary["method"],
+                                                        summary["resolution"]), baked,
                cached["runs"], positions, lamps, seconds.cpu)
 
 

@@ -93,36 +93,26 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     out["solve_elements"] = planned.solve_elements;
     out["solve_element_area"] = to_numpy(planned.solve_element_area);
     out["matrix_bytes_bound"] = planned.matrix_bytes_bound;
+    out["matrix_bytes_planned"] = planned.matrix_bytes_planned;
     out["matrix_stored"] = planned.matrix_stored;
+    out["sight_distance"] = planned.sight_distance;
+    out["resolution_distance"] = planned.resolution_distance;
     return out;
 }
 
-/// Elements with only their vertices: recommended_resolution and resolved_area read the areas (none
-/// here), the count (size() is centre.size()) and the vertices' bounding box.
-Elements vertex_layout(const Array<float>& element_vertices) {
-    require_shape(element_vertices, "element_vertices", -1, 3);
-    Elements elements;
-    const float* v = element_vertices.data();
-    for (py::ssize_t i = 0; i < element_vertices.shape(0); ++i)
-        elements.vertices.emplace_back(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-    return elements;
-}
-
-int recommended_resolution_arrays(const Array<float>& element_area, const Array<float>& element_vertices,
-                                  double cells) {
+int recommended_resolution_arrays(const Array<float>& element_area, double distance, double cells) {
     require_shape(element_area, "element_area", -1, 0);
     if (!(cells > 0.0)) throw InputError("cells must be > 0");
-    Elements elements = vertex_layout(element_vertices);
+    if (!(distance >= 0.0)) throw InputError("distance must be >= 0");
     const float* area = element_area.data();
-    elements.area.assign(area, area + element_area.shape(0));
-    elements.centre.resize(elements.area.size());
-    return recommended_resolution(elements, cells);
+    return recommended_resolution(std::vector<float>(area, area + element_area.shape(0)), distance, cells);
 }
 
-double resolved_area_arrays(const Array<float>& element_vertices, int resolution, double cells) {
+double resolved_area_arrays(double distance, int resolution, double cells) {
     if (!(cells > 0.0)) throw InputError("cells must be > 0");
     if (resolution < 1) throw InputError("resolution must be >= 1");
-    return resolved_area(vertex_layout(element_vertices), resolution, cells);
+    if (!(distance >= 0.0)) throw InputError("distance must be >= 0");
+    return resolved_area(distance, resolution, cells);
 }
 
 }  // namespace
@@ -180,8 +170,12 @@ void bind_bake(py::module_& m) {
           "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
           "the hierarchy's patches), solve_elements and solve_element_area (the unknowns and their areas: fewer than "
           "the elements where small ones merge), "
-          "matrix_bytes_bound and matrix_stored (uniform methods: the form factors fit "
-          "matrix_budget_bytes and are stored, else rendered on demand). Takes bake()'s settings.",
+          "matrix_bytes_bound, matrix_bytes_planned (uniform methods: the bound when it fits matrix_budget_bytes, "
+          "else the bytes estimated from a sample of the matrix's rows at the settings' resolution, with a margin of "
+          "3 standard errors), matrix_stored (the planned bytes fit the budget: the form factors are stored, else "
+          "rendered on demand), sight_distance (the power mean of the hit distances of cosine-weighted rays from "
+          "area-stratified points) and resolution_distance (the distance the resolution is judged from: "
+          "1.9 x sight_distance, at most half the diagonal of the elements' bounding box). Takes bake()'s settings.",
           "positions"_a, "face_offsets"_a, "corner_vertices"_a, "reflectance"_a, "emission"_a,
           "material"_a = py::none(), py::kw_only(), "front_only"_a = py::none(), "textures"_a = py::none());
     // The core's own memory model, so the add-on's automatic method agrees with bake()'s choice.
@@ -193,13 +187,14 @@ void bind_bake(py::module_& m) {
           "input corners (the core's; the add-on checks it against the memory budget).",
           "layers"_a, "elements"_a, "corners"_a);
     m.def("recommended_resolution", &recommended_resolution_arrays,
-          "Even hemi-cube resolution in [32, 1024] at which the 10th percentile of element_area, seen head-on "
-          "from half the diagonal of element_vertices' bounding box, covers `cells` cells: 2 d sqrt(cells / A).",
-          "element_area"_a, "element_vertices"_a, "cells"_a = 8.0);
+          "Even hemi-cube resolution in [32, 1024] at which the smallest elements holding a tenth of element_area's "
+          "total, seen head-on from `distance` (plan()'s resolution_distance), cover `cells` cells: 2 d sqrt(cells / "
+          "A).",
+          "element_area"_a, "distance"_a, "cells"_a = 8.0);
     m.def("resolved_area", &resolved_area_arrays,
           "The area an element must have to cover `cells` cells of a hemi-cube of `resolution`, seen head-on from "
-          "half the diagonal of element_vertices' bounding box: cells (2 d / N)^2 (recommended_resolution inverted).",
-          "element_vertices"_a, "resolution"_a, "cells"_a);
+          "`distance` (plan()'s resolution_distance): cells (2 d / N)^2 (recommended_resolution inverted).",
+          "distance"_a, "resolution"_a, "cells"_a);
     m.attr("DEFAULT_MATRIX_BUDGET_BYTES") = BakeSettings().matrix_budget_bytes;
 }
 

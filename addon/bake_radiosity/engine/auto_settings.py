@@ -1,7 +1,8 @@
 """The artist's Quality and the Automatic method as concrete bake settings: element size from the
-scene's size, resolution from the elements the scene is made of (the core's
-recommended_resolution), tolerance from the preset, method from the core's own memory model and
-the memory budget. No bpy: numbers from the exported arrays only."""
+scene's size, resolution from the elements the scene is made of and the distance they see each
+other at (the core's recommended_resolution and plan's resolution_distance), tolerance from the preset,
+method from the core's own memory model (plan's matrix_bytes_planned) and the memory budget. No
+bpy: numbers from the exported arrays only."""
 
 import dataclasses
 import math
@@ -53,8 +54,11 @@ class Preset:
 
 
 # Cells: the smallest elements (and emitting elements) holding a tenth of their area, seen head-on
-# from half the scene's diagonal, cover this many cells; their factors then alias by about 0.35 cells^-0.7
-# RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236.
+# from plan's resolution_distance, cover this many cells; their factors then alias by about 0.35
+# cells^-0.7 RMS (13%, 10%, 8%). On the 1 m Cornell box that is resolution 56, 136 and 236. That
+# distance is half the scene's diagonal, where the presets were tuned, or 1.9 times the distance the
+# surfaces see each other at where that is less (the core's resolution.h): a game level's rooms,
+# far smaller than its diagonal, no longer pay for its size.
 # Near field, measured against Cycles (docs/accuracy.md): a slab 5 mm over a floor, corners under
 # and around it, Medium 7.5% -> 5.6% RMS and High 7.9% -> 7.1% with it, at the same time; the
 # Cornell box unchanged. At Draft's resolution it made the slab worse (15.7% -> 16.5%, bias +9% ->
@@ -109,10 +113,12 @@ class Choice:
     elements: int
     scene_size: float
     matrix_bytes_bound: int     # the core's worst case for the stored matrix
+    matrix_bytes_planned: int   # the core's plan: the bound if it fits the budget, else estimated from sampled rows
     budget_bytes: int
     max_element_aspect: float   # 0 = slivers kept (the zonal bake does not cut them)
     hemicube_rotations: int     # hemi-cubes per element, turned about the normal (1 = one)
     resolution_reason: str      # why this resolution, in words for the summary
+    resolution_distance: float  # metres: what the resolution is judged from (plan's resolution_distance)
     near_field: bool            # the core's near-field correction (a preset's choice; Custom: off)
     gather_rays: int = 0        # final gather's indirect rays per output corner (0 = no gather)
     gather_field_rays: int = 0  # its rays per element vertex for the field the corners read (0: none)
@@ -163,7 +169,7 @@ def direct_emitter_area(layout, emitting, resolution, preset):
     elements directly, the smallest first within DIRECT_EMITTER_PAIRS emitter-element pairs: (area
     bound, how many)."""
     area = layout["element_area"]
-    bound = native.core().resolved_area(layout["element_vertices"], resolution, preset.cells)
+    bound = native.core().resolved_area(layout["resolution_distance"], resolution, preset.cells)
     small = np.sort(area[emitting & (area < bound)])
     most = DIRECT_EMITTER_PAIRS // max(1, len(solved_areas(layout)))
     if len(small) > most:  # the largest of them go back to the hemi-cube
@@ -174,18 +180,20 @@ def direct_emitter_area(layout, emitting, resolution, preset):
 
 def preset_resolution(layout, emitting, preset, zonal=False):
     """The Resolution at which the smallest elements, and emitting elements, holding a tenth of their
-    area (a small lamp aliases most visibly: blotchy light) cover `preset.cells` cells seen from half
-    the scene's diagonal (`_core.recommended_resolution`). Emitting elements that resolution resolves
-    poorly light the elements directly instead (direct_emitter_area; not in the zonal bake).
+    area (a small lamp aliases most visibly: blotchy light) cover `preset.cells` cells seen from
+    plan's resolution_distance (`_core.recommended_resolution`).
+    Emitting elements that resolution resolves poorly light the elements directly instead
+    (direct_emitter_area; not in the zonal bake).
     Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
-    area, vertices, solved = layout["element_area"], layout["element_vertices"], solved_areas(layout)
+    area, distance, solved = layout["element_area"], layout["resolution_distance"], solved_areas(layout)
     direct = (0.0, 0)
     if not zonal and emitting.any():
-        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(solved, vertices, preset.cells),
+        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(solved, distance, preset.cells),
                                      preset)
         emitting = emitting & ~(area < direct[0])
-    found = _resolution_for_groups(core, solved, area[emitting], vertices, preset, zonal)
+    seen_from = _seen_from(layout)
+    found = _resolution_for_groups(core, solved, area[emitting], distance, seen_from, preset, zonal)
     if not direct[1]:
         return found
     reason = found.reason + "; %d small emitting element%s light the scene directly" % (
@@ -199,21 +207,29 @@ def solved_areas(layout):
     return layout.get("solve_element_area", layout["element_area"])
 
 
-def _resolution_for_groups(core, area, emitting_area, vertices, preset, zonal):
+def _seen_from(layout):
+    """Where the resolution is judged from, in words for the summary."""
+    half_diagonal = 0.5 * float(np.linalg.norm(np.ptp(layout["element_vertices"], axis=0)))
+    if layout["resolution_distance"] < 0.999 * half_diagonal:
+        return "%.3g m, 1.9 times the distance the surfaces see each other at" % layout["resolution_distance"]
+    return "half the scene's diagonal"
+
+
+def _resolution_for_groups(core, area, emitting_area, distance, seen_from, preset, zonal):
     groups = [("elements", area)] + ([("emitting elements", emitting_area)] if len(emitting_area) else [])
-    wanted = [(core.recommended_resolution(a, vertices, preset.cells), name, a) for name, a in groups]
+    wanted = [(core.recommended_resolution(a, distance, preset.cells), name, a) for name, a in groups]
     resolution, name, driving = max(wanted, key=lambda w: w[0])
     if resolution < MAX_RESOLUTION:
-        return Resolution(resolution, 1, "the smallest %s holding a tenth of their area cover %g cells from half "
-                                         "the scene's diagonal" % (name, preset.cells))
+        return Resolution(resolution, 1, "the smallest %s holding a tenth of their area cover %g cells from %s"
+                          % (name, preset.cells, seen_from))
     # N grows as sqrt(cells): a quarter of the cells asks for N / 2. Halve until inside the core's range.
     scale = 2
-    while core.recommended_resolution(driving, vertices, preset.cells / scale ** 2) >= MAX_RESOLUTION and scale < 64:
+    while core.recommended_resolution(driving, distance, preset.cells / scale ** 2) >= MAX_RESOLUTION and scale < 64:
         scale *= 2
-    needed = scale * core.recommended_resolution(driving, vertices, preset.cells / scale ** 2)
+    needed = scale * core.recommended_resolution(driving, distance, preset.cells / scale ** 2)
     rotations = 1 if zonal else min(MAX_ROTATIONS, math.ceil((needed / MAX_RESOLUTION) ** ROTATION_EXPONENT))
-    reason = "the smallest %s holding a tenth of their area would need %d to cover %g cells from half the " \
-             "scene's diagonal, capped at %d" % (name, needed, preset.cells, MAX_RESOLUTION)
+    reason = "the smallest %s holding a tenth of their area would need %d to cover %g cells from %s, capped at " \
+             "%d" % (name, needed, preset.cells, seen_from, MAX_RESOLUTION)
     if rotations > 1:
         reason += ", %d hemi-cubes turned about the normal" % rotations
     return Resolution(MAX_RESOLUTION, rotations, reason)
@@ -269,15 +285,20 @@ def _choose(settings, exported, media, size, preset, gathered):
         emitting = exported.emission[layout["element_polygon"]].max(axis=1) > 0.0
         chosen = preset_resolution(layout, emitting, preset, zonal)
     resolution = chosen.resolution
-    bound = int(core.matrix_bytes_bound(unknowns, resolution))
     budget = int(settings["memory_budget"]) * MEBIBYTE
+    if zonal:
+        bound = planned = int(core.matrix_bytes_bound(unknowns, resolution))
+    else:
+        bound, planned = _matrix_bytes(core, exported, budget, element_size=element_size,
+                                       max_element_aspect=max_element_aspect, resolution=resolution,
+                                       hemicube_rotations=chosen.rotations, near_field=near_field)
     if preset is None and settings["method"] != "AUTO":
         method = CORE_METHODS[settings["method"]]
     else:
         # Within the budget the core stores F and Gauss-Seidel is fastest (docs/benchmarks.md);
         # beyond it the hierarchy's memory grows about as the triangle count, not as n^2
         # (docs/hierarchy.md). It has no media: there progressive refinement solves in memory O(n).
-        method = "gauss_seidel" if bound <= budget else ("progressive" if zonal else "hierarchical")
+        method = "gauss_seidel" if planned <= budget else ("progressive" if zonal else "hierarchical")
     if zonal and method == "hierarchical":
         raise ValueError("The hierarchical method does not bake fog or smoke yet: choose Automatic or "
                          "progressive refinement for scenes with media")
@@ -286,9 +307,11 @@ def _choose(settings, exported, media, size, preset, gathered):
     gather = gathers(settings, media)
     return Choice(element_size=element_size, resolution=resolution, tolerance=tolerance,
                   refine_tolerance=refine_tolerance, method=method,
-                  elements=elements, scene_size=size, matrix_bytes_bound=bound, budget_bytes=budget,
+                  elements=elements, scene_size=size, matrix_bytes_bound=bound, matrix_bytes_planned=planned,
+                  budget_bytes=budget,
                   max_element_aspect=max_element_aspect, hemicube_rotations=chosen.rotations,
                   resolution_reason=chosen.reason,
+                  resolution_distance=float(layout["resolution_distance"]),
                   # The hierarchy traces rays and the zonal bake takes no stability settings.
                   near_field=near_field and method != "hierarchical" and not zonal,
                   gather_rays=rays if gather else 0, gather_field_rays=field_rays if gather else 0,
@@ -296,11 +319,20 @@ def _choose(settings, exported, media, size, preset, gathered):
                   direct_emitter_area=chosen.direct_emitter_area, direct_emitters=chosen.direct_emitters)
 
 
+def _matrix_bytes(core, exported, budget, **keywords):
+    """The core's bound and planned bytes (plan's matrix_bytes_bound and matrix_bytes_planned: beyond
+    the budget, estimated from a sample of F's rows rendered as the bake will render them) of F over
+    the elements the bake will solve: with the lamps, beside which faces keep elements of their own."""
+    planned = core.plan(*exported.scene_arrays(), front_only=exported.front_only, lights=exported.lights,
+                        matrix_budget_bytes=budget, **keywords)
+    return int(planned["matrix_bytes_bound"]), int(planned["matrix_bytes_planned"])
+
+
 def warnings_for(choice):
     """Choices an artist made that will be slow, with what to do instead."""
-    if choice.method in ("gauss_seidel", "jacobi") and choice.matrix_bytes_bound > choice.budget_bytes:
+    if choice.method in ("gauss_seidel", "jacobi") and choice.matrix_bytes_planned > choice.budget_bytes:
         return ["The form factors of %d elements may need %.0f MB, more than the memory budget (%.0f MB): "
                 "every sweep renders every hemi-cube again, which is slow. Method Automatic would bake "
                 "hierarchically instead (progressively with fog or smoke)"
-                % (choice.elements, choice.matrix_bytes_bound / MEBIBYTE, choice.budget_bytes / MEBIBYTE)]
+                % (choice.elements, choice.matrix_bytes_planned / MEBIBYTE, choice.budget_bytes / MEBIBYTE)]
     return []

@@ -1,5 +1,6 @@
 /// @file bake.cpp
 /// @brief The uniform bake pipeline: elements, form factors (stored or on demand), solve, corners.
+#include "bake/matrix_estimate.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
 
@@ -37,9 +38,27 @@ std::vector<Rgb> light_arriving(const Elements& elements, const std::vector<Rgb>
     return light;
 }
 
-bool stores_matrix(std::size_t element_count, const BakeSettings& settings) {
-    const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;
-    return matrix_bytes_bound(element_count, settings.resolution) <= settings.matrix_budget_bytes / copies;
+namespace {
+
+/// The budget of one stored matrix: progressive refinement keeps F and F^T.
+std::size_t matrix_budget(const BakeSettings& settings) {
+    return settings.matrix_budget_bytes / (settings.solve.method == Method::Progressive ? 2 : 1);
+}
+
+}  // namespace
+
+std::size_t planned_matrix_bytes(const Elements& elements, const BakeSettings& settings) {
+    const std::size_t bound = matrix_bytes_bound(elements.size(), settings.resolution);
+    if (bound <= matrix_budget(settings)) return bound;
+    return estimate_matrix(elements, row_settings(settings)).bytes;
+}
+
+bool fits_matrix_budget(std::size_t matrix_bytes, const BakeSettings& settings) {
+    return matrix_bytes <= matrix_budget(settings);
+}
+
+bool stores_matrix(const Elements& elements, const BakeSettings& settings) {
+    return fits_matrix_budget(planned_matrix_bytes(elements, settings), settings);
 }
 
 UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
@@ -49,7 +68,7 @@ UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& 
     transport.clusters = uniform_clusters(transport.build.elements, input, settings);
     transport.emitted = transport.build.elements.emission;
     transport.seconds_elements = seconds_since(start);
-    transport.matrix_stored = stores_matrix(transport.solve_elements().size(), settings);
+    transport.matrix_stored = stores_matrix(transport.solve_elements(), settings);
     if (!transport.matrix_stored) return transport;
     start = Clock::now();
     RowSettings rows = row_settings(settings);

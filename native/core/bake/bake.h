@@ -81,7 +81,8 @@ struct BakeSettings {
     int hemicube_rotations = 1;
     /// Analytic factors for near pairs (shared edges, receivers closer than their size); off by default.
     NearFieldSettings near_field;
-    /// Memory allowed for the stored matrix, judged by matrix_bytes_bound (2 GiB by default).
+    /// Memory allowed for the stored matrix, judged by matrix_bytes_bound, or where that passes it
+    /// by an estimate from a sample of the matrix's rows (matrix_estimate.h); 2 GiB by default.
     std::size_t matrix_budget_bytes = std::size_t(2) << 30;
     /// Point, spot and sun lamps, shot once before the solve: each element's reflected direct
     /// light rho E / pi joins its emitted radiance.
@@ -172,7 +173,15 @@ struct BakePlan {
     /// uniform bake's merged elements; else build's elements').
     std::vector<float> solve_element_area;
     std::size_t matrix_bytes_bound = 0;  ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
-    bool matrix_stored = false;          ///< uniform bakes: the bound fits the budget (media bakes always store)
+    /// Uniform bakes: the bound when it fits the budget, else the stored matrix's bytes estimated
+    /// from a sample of its rows at settings' resolution, rotations and near field, with a margin
+    /// (matrix_estimate.h); media bakes: the bound.
+    std::size_t matrix_bytes_planned = 0;
+    bool matrix_stored = false;  ///< uniform bakes: matrix_bytes_planned fits the budget (media bakes always store)
+    /// The distance at which the elements see each other (sight_distance.h), and the one the
+    /// hemi-cube's resolution is judged from (resolution_distance, resolution.h): 1.9 times that, at
+    /// most half the diagonal of the elements' bounding box.
+    double sight_distance = 0.0, resolution_distance = 0.0;
 };
 
 /// Upper bound of F's memory: n rows of at most min(n, 3 N^2) nonzeros (the hemi-cube's cells at

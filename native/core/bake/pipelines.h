@@ -37,10 +37,18 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy);
 /// The hierarchy's settings from the bake's (bake.h's HierarchicalSettings says which it takes).
 HierarchySettings hierarchy_settings(const BakeSettings& settings);
 
-/// Whether the uniform bake stores F: computed in parallel and read cheaply by every sweep or
-/// shot, with F^T too for progressive refinement's exact columns. Beyond the budget, rows are
-/// rendered on demand (memory O(n)).
-bool stores_matrix(std::size_t element_count, const BakeSettings& settings);
+/// The bytes of F over `elements` that the uniform bake plans for: matrix_bytes_bound when it fits
+/// the budget (F's, or F's and F^T's for progressive refinement), else the estimate from a sample of
+/// F's rows with its margin (matrix_estimate.h), rendered as the bake's settings render rows.
+std::size_t planned_matrix_bytes(const Elements& elements, const BakeSettings& settings);
+
+/// Whether F of `matrix_bytes` fits the budget (progressive refinement's: F's and F^T's).
+bool fits_matrix_budget(std::size_t matrix_bytes, const BakeSettings& settings);
+
+/// Whether the uniform bake stores F over `elements`: planned_matrix_bytes fits the budget. Stored,
+/// F is computed in parallel and read cheaply by every sweep or shot, with F^T too for progressive
+/// refinement's exact columns; else rows are rendered on demand (memory O(n)).
+bool stores_matrix(const Elements& elements, const BakeSettings& settings);
 
 /// What the uniform bake builds before any source shines: the elements and, within the budget, their
 /// form factors, and what the final gather's rays hit. Light is linear in its sources, so one

@@ -5,6 +5,8 @@
 #include "bake/media_bake.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
+#include "visibility/resolution.h"
+#include "visibility/sight_distance.h"
 
 #include <utility>
 
@@ -83,6 +85,16 @@ HierarchySettings hierarchy_settings(const BakeSettings& settings) {
 
 }  // namespace detail
 
+namespace {
+
+/// The distances the hemi-cube's resolution is judged from (bake.h's BakePlan).
+void distances(BakePlan& plan) {
+    plan.sight_distance = sight_distance(plan.build.elements);
+    plan.resolution_distance = resolution_distance(plan.sight_distance, half_diagonal(plan.build.elements));
+}
+
+}  // namespace
+
 BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     check(settings);
     BakePlan plan;
@@ -90,19 +102,27 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
         plan.solve_element_area = plan.build.elements.area;
         plan.solve_elements = plan.solve_element_area.size();
+        distances(plan);
         return plan;
     }
     plan.build =
         with_media(settings) ? detail::media_elements(input, settings) : detail::uniform_elements(input, settings);
-    plan.solve_element_area = plan.build.elements.area;
-    if (!with_media(settings)) {
-        const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
-        if (clusters.merged()) plan.solve_element_area = clusters.elements.area;
+    distances(plan);
+    if (with_media(settings)) {  // the media bake always stores its matrix (or refuses to bake beyond the budget)
+        plan.solve_element_area = plan.build.elements.area;
+        plan.solve_elements = plan.solve_element_area.size();
+        plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
+        plan.matrix_bytes_planned = plan.matrix_bytes_bound;
+        plan.matrix_stored = true;
+        return plan;
     }
-    plan.solve_elements = plan.solve_element_area.size();
+    const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
+    const Elements& solved = clusters.merged() ? clusters.elements : plan.build.elements;
+    plan.solve_element_area = solved.area;
+    plan.solve_elements = solved.size();
     plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
-    // The media bake always stores its matrix (or refuses to bake beyond the budget).
-    plan.matrix_stored = with_media(settings) || detail::stores_matrix(plan.solve_elements, settings);
+    plan.matrix_bytes_planned = detail::planned_matrix_bytes(solved, settings);
+    plan.matrix_stored = detail::fits_matrix_budget(plan.matrix_bytes_planned, settings);
     return plan;
 }
 

@@ -1,9 +1,6 @@
 /// @file resolution.cpp
-/// @brief Hemi-cube resolution from element areas and the scene's size.
+/// @brief Hemi-cube resolution from element areas and the distance they are seen from.
 #include "visibility/resolution.h"
-
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,37 +13,28 @@ int resolution_for(double area, double distance, double cells) {
     return 2 * static_cast<int>(std::ceil(n / 2.0));
 }
 
-namespace {
-
-double half_diagonal(const Elements& elements) {
-    Vec3 lo(INFINITY), hi(-INFINITY);
-    for (const Vec3& v : elements.vertices) {
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    }
-    return elements.vertices.empty() ? 0.0 : 0.5 * glm::length(hi - lo);
+double resolution_distance(double sight_distance, double half_diagonal) {
+    return std::min(half_diagonal, kSightToResolution * sight_distance);
 }
 
-}  // namespace
-
-int recommended_resolution(const Elements& elements, double cells) {
-    if (elements.size() == 0) return 32;
+int recommended_resolution(const std::vector<float>& element_area, double distance, double cells) {
+    if (element_area.empty()) return 32;
     // The smallest elements that hold a tenth of the surface, not a tenth by count: a prop made of
     // thousands of tiny faces (a text object, a cut contact line) carries little of the light, and
     // must not set the cost of the whole bake.
-    std::vector<float> area = elements.area;
+    std::vector<float> area = element_area;
     std::sort(area.begin(), area.end());
     double total = 0.0;
     for (const float a : area) total += std::max(0.0f, a);
     double held = 0.0;
     std::size_t k = 0;
     while (k + 1 < area.size() && (held += std::max(0.0f, area[k])) < 0.1 * total) ++k;
-    return resolution_for(area[k], half_diagonal(elements), cells);
+    return resolution_for(area[k], distance, cells);
 }
 
-double resolved_area(const Elements& elements, int resolution, double cells) {
+double resolved_area(double distance, int resolution, double cells) {
     if (resolution <= 0) return 0.0;
-    const double cell_width = 2.0 * half_diagonal(elements) / resolution;
+    const double cell_width = 2.0 * distance / resolution;
     return cells * cell_width * cell_width;
 }
 

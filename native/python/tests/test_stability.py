@@ -108,8 +108,8 @@ class StabilitySettingsTest(unittest.TestCase):
 
 class RecommendedResolutionTest(unittest.TestCase):
     """N = 2 d sqrt(cells / A) for A the largest of the smallest elements that hold a tenth of the area,
-    at half the bounding box diagonal d,
-    even, within [32, 1024] (docs/stability.md), computed here from the geometry."""
+    seen from the plan's resolution_distance d, even, within [32, 1024] (docs/stability.md), computed here
+    from the geometry."""
 
     @staticmethod
     def cube(element_size):
@@ -119,34 +119,43 @@ class RecommendedResolutionTest(unittest.TestCase):
         return _core.plan(v, offsets, corners, reflectance, emission, element_size=element_size)
 
     def test_unit_cube_at_10_cm_and_3_cm(self):
-        d = 0.5 * math.sqrt(3.0)
+        d = 0.5 * math.sqrt(3.0)  # 1.9 x its sight distance is more: half the diagonal
         for element_size, per_side, expected in ((0.1, 10, 50), (0.03, 34, 168)):
             layout = self.cube(element_size)
             self.assertEqual(layout["elements"], 2 * 6 * per_side ** 2)  # the emitting walls' back sides too
+            self.assertAlmostEqual(layout["resolution_distance"], d, places=6)
             exact = 2 * d * math.sqrt(8.0 / (1.0 / per_side) ** 2)
             self.assertEqual(expected, 2 * math.ceil(exact / 2))
-            self.assertEqual(_core.recommended_resolution(layout["element_area"], layout["element_vertices"]),
-                             expected)
+            self.assertEqual(_core.recommended_resolution(layout["element_area"], d), expected)
             # N grows as sqrt(cells), never below 32.
-            self.assertEqual(_core.recommended_resolution(layout["element_area"], layout["element_vertices"],
-                                                          cells=2.0), max(32, 2 * math.ceil(exact / 4)))
+            self.assertEqual(_core.recommended_resolution(layout["element_area"], d, cells=2.0),
+                             max(32, 2 * math.ceil(exact / 4)))
+
+    def test_sight_distance_of_the_cube_is_its_chords(self):
+        """The power mean (1.4) of the chords of a unit cube from its walls, cosine-weighted, those
+        shorter than the sending element left out: more than Cauchy's mean chord 4 V / S = 2/3, less
+        than the longest chord sqrt(3), and the same whatever the elements."""
+        coarse, fine = self.cube(0.1)["sight_distance"], self.cube(0.03)["sight_distance"]
+        self.assertGreater(coarse, 2.0 / 3.0)
+        self.assertLess(coarse, 0.85)
+        self.assertAlmostEqual(coarse, fine, delta=0.03)
 
     def test_resolved_area_inverts_the_resolution(self):
         """A = cells (2 d / N)^2: at N = 50 the unit cube's 10 cm elements (0.01 m^2) are resolved with
         the 8 cells they were chosen for, to N's rounding (exact N = 48.99)."""
-        vertices = self.cube(0.1)["element_vertices"]
-        d = 0.5 * math.sqrt(3.0)
+        d = self.cube(0.1)["resolution_distance"]
         for resolution, cells in ((50, 8.0), (128, 6.0)):
-            self.assertAlmostEqual(_core.resolved_area(vertices, resolution, cells),
-                                   cells * (2 * d / resolution) ** 2, places=9)
-        self.assertLess(_core.resolved_area(vertices, 50, 8.0), 0.01)
-        self.assertGreater(_core.resolved_area(vertices, 48, 8.0), 0.01)
+            self.assertAlmostEqual(_core.resolved_area(d, resolution, cells), cells * (2 * d / resolution) ** 2,
+                                   places=9)
+        self.assertLess(_core.resolved_area(d, 50, 8.0), 0.01)
+        self.assertGreater(_core.resolved_area(d, 48, 8.0), 0.01)
         with self.assertRaises(_core.InputError):
-            _core.resolved_area(vertices, 0, 8.0)
+            _core.resolved_area(d, 0, 8.0)
+        with self.assertRaises(_core.InputError):
+            _core.resolved_area(-1.0, 50, 8.0)
 
     def test_tenth_of_the_area_clamps_and_errors(self):
-        layout = self.cube(0.1)
-        area, vertices = layout["element_area"], layout["element_vertices"]
+        area, d = self.cube(0.1)["element_area"], 0.5 * math.sqrt(3.0)
         # Tiny elements, however many, hold no area and do not set the resolution; smaller elements
         # that hold a tenth of the area do: a fifth of the elements at a quarter of the area (1 / 21
         # of the total) do not, half of them (1 / 5) do, N = 2 d sqrt(8 / (0.01 / 4)).
@@ -154,19 +163,19 @@ class RecommendedResolutionTest(unittest.TestCase):
         tiny[:len(area) // 2] = 1e-9
         fifth[:len(area) // 5] *= 0.25
         half[:len(area) // 2] *= 0.25
-        self.assertEqual(_core.recommended_resolution(tiny, vertices), 50)
-        self.assertEqual(_core.recommended_resolution(fifth, vertices), 50)
-        exact = 2 * 0.5 * math.sqrt(3.0) * math.sqrt(8.0 / (0.01 / 4))
-        self.assertEqual(_core.recommended_resolution(half, vertices), 2 * math.ceil(exact / 2))
-        self.assertEqual(_core.recommended_resolution(np.full(10, 1e-9, dtype=np.float32), vertices), 1024)
-        self.assertEqual(_core.recommended_resolution(np.full(10, 100.0, dtype=np.float32), vertices), 32)
-        self.assertEqual(_core.recommended_resolution(np.zeros(0, dtype=np.float32), vertices), 32)
-        with self.assertRaisesRegex(ValueError, "element_vertices"):
-            _core.recommended_resolution(area, vertices.ravel())
+        self.assertEqual(_core.recommended_resolution(tiny, d), 50)
+        self.assertEqual(_core.recommended_resolution(fifth, d), 50)
+        exact = 2 * d * math.sqrt(8.0 / (0.01 / 4))
+        self.assertEqual(_core.recommended_resolution(half, d), 2 * math.ceil(exact / 2))
+        self.assertEqual(_core.recommended_resolution(np.full(10, 1e-9, dtype=np.float32), d), 1024)
+        self.assertEqual(_core.recommended_resolution(np.full(10, 100.0, dtype=np.float32), d), 32)
+        self.assertEqual(_core.recommended_resolution(np.zeros(0, dtype=np.float32), d), 32)
         with self.assertRaisesRegex(ValueError, "element_area"):
-            _core.recommended_resolution(area.reshape(-1, 1), vertices)
+            _core.recommended_resolution(area.reshape(-1, 1), d)
         with self.assertRaisesRegex(ValueError, "cells"):
-            _core.recommended_resolution(area, vertices, cells=0.0)
+            _core.recommended_resolution(area, d, cells=0.0)
+        with self.assertRaisesRegex(ValueError, "distance"):
+            _core.recommended_resolution(area, -1.0)
 
 
 if __name__ == "__main__":
