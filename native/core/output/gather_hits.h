@@ -61,6 +61,7 @@ public:
     /// Whether some ray set was left unrecorded for the budget.
     bool full() const { return full_.load(std::memory_order_relaxed); }
     void set_budget(std::size_t budget_bytes) { budget_bytes_ = budget_bytes; }
+    std::size_t budget() const { return budget_bytes_; }
 
 private:
     struct KeyHash {
