@@ -67,9 +67,9 @@ def report(label, summary, cpu, wall, reference_cpu=None):
     phases = {k: round(v, 2) for k, v in summary["seconds"].items() if v >= 0.05}
     share = " (%.1f%% of the first bake's CPU)" % (100.0 * cpu / reference_cpu) if reference_cpu else ""
     cache = summary.get("cache") or {}
-    print("  %-22s %7d elements, %s: %6.2f CPU s, %6.2f wall s%s; cache reused %s, %.0f MB; %s"
+    print("  %-22s %7d elements, %s: %6.2f CPU s, %6.2f wall s%s; cache reused %s, %.0f MB (direct light %.0f MB); %s"
           % (label, summary["elements"], summary["method"], cpu, wall, share, cache.get("reused"),
-             cache.get("bytes", 0) / 2 ** 20, phases), flush=True)
+             cache.get("bytes", 0) / 2 ** 20, cache.get("direct_bytes", 0) / 2 ** 20, phases), flush=True)
 
 
 def measure_rebake(addon, quality):

@@ -296,6 +296,7 @@ py::dict bake_result(const BakeResult& result) {
         cache["reused"] = result.cache->reused;
         cache["kept"] = result.cache->kept;
         cache["bytes"] = result.cache->bytes;
+        cache["direct_bytes"] = result.cache->direct_bytes;
         cache["not_reused"] = result.cache->not_reused;
         cache["not_kept"] = result.cache->not_kept;
         out["cache"] = cache;

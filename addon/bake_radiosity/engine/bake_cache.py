@@ -48,6 +48,8 @@ def cache_text(cache: Optional[Dict[str, Any]]) -> str:
     if not cache:
         return ""
     size = "%.0f MB" % (cache["bytes"] / MEBIBYTE)
+    if cache.get("direct_bytes"):
+        size += ", %.0f MB of it the direct light per source" % (cache["direct_bytes"] / MEBIBYTE)
     if cache["reused"] and cache["kept"]:
         return "Reused the geometry of the previous bake (%s)" % size
     if cache["reused"]:

@@ -177,7 +177,8 @@ void light_of_sources(const SceneInput& input, const BakeSettings& settings, Uni
     restore_small_emitters(elements, solve_emitted, small, result.solve);
     result.solve_elements = elements.size();
     if (transport.clusters.merged()) inherit_light(input, settings, transport, emitted, solve_emitted, result);
-    output_pass(input, settings, transport.build.elements, emitted, result, progress, transport.gather_hits.get());
+    output_pass(input, settings, transport.build.elements, emitted, result, progress,
+                {transport.gather_hits.get(), transport.kept_direct.get()});
 }
 
 BakeResult bake_uniform(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {

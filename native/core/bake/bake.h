@@ -117,11 +117,12 @@ struct MediaResult {
 /// Whether a bake given a BakeCache read what the previous bake learned about the geometry, and
 /// whether the cache keeps what this one learned (bake_cache.h).
 struct CacheUse {
-    bool reused = false;     ///< the elements, form factors and the gather's hits of the previous bake
-    bool kept = false;       ///< the cache holds this bake's for the next
-    std::size_t bytes = 0;   ///< what the cache holds after the bake (0 when not kept)
-    std::string not_reused;  ///< why it was not reused ("" when it was)
-    std::string not_kept;    ///< why it was not kept ("" when it was)
+    bool reused = false;           ///< the elements, form factors and the gather's hits of the previous bake
+    bool kept = false;             ///< the cache holds this bake's for the next
+    std::size_t bytes = 0;         ///< what the cache holds after the bake (0 when not kept)
+    std::string not_reused;        ///< why it was not reused ("" when it was)
+    std::string not_kept;          ///< why it was not kept ("" when it was)
+    std::size_t direct_bytes = 0;  ///< of `bytes`, the gather's direct light kept per source
 };
 
 struct BakeResult {

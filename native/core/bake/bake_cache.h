@@ -10,10 +10,10 @@
 /// gather's hits read and its shadow rays find. A bake given a cache whose geometry matches reads
 /// the first three and computes the rest: the elements' reflectance and emission are taken again
 /// from the input (a material's colour, an emission's strength), the solve runs on the stored F,
-/// and the gather reads its recorded hits. Shadow rays are traced again for every lamp, emitter and
-/// the World (how many a source gets depends on all the sources' strengths), so a moved, resized,
-/// recoloured or brightened lamp needs nothing more than a first bake does, and the re-bake's
-/// colours equal a bake from scratch to the bit.
+/// and the gather reads its recorded hits. Each source's direct light at each gathered point is kept
+/// under a signature of the source (kept_direct_light.h): shadow rays are traced again only towards
+/// the lamps, emitters and World that changed, with the sampling of a bake from scratch, so the
+/// re-bake's colours equal a bake from scratch to the bit.
 ///
 /// What invalidates it (a hash, bake_cache.cpp geometry_key): the vertex positions, the polygons and
 /// their corners, the material ids, which polygons emit and which emit from their front only (an
@@ -25,6 +25,7 @@
 ///
 /// Memory: the elements, F and the hits, within BakeSettings::matrix_budget_bytes (the memory
 /// budget F is judged by); a bake whose cache would pass it bakes without keeping it and says so.
+/// The direct light kept takes what the budget leaves beside them, or is let go (and traced again).
 #pragma once
 
 #include "bake/bake.h"
@@ -47,7 +48,7 @@ public:
     BakeCache(const BakeCache&) = delete;
     BakeCache& operator=(const BakeCache&) = delete;
 
-    /// The bytes held (elements, F, the gather's hits); 0 when empty.
+    /// The bytes held (elements, F, the gather's hits and direct light); 0 when empty.
     std::size_t bytes() const { return bytes_; }
     bool empty() const { return transport_ == nullptr; }
     void clear();

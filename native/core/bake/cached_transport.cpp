@@ -69,10 +69,11 @@ std::size_t elements_bytes(const Elements& e) {
 
 std::size_t transport_bytes(const UniformTransport& t) {
     return elements_bytes(t.build.elements) + elements_bytes(t.clusters.elements) +
-           (t.form_factors ? t.form_factors->bytes() : 0) + (t.gather_hits ? t.gather_hits->bytes() : 0);
+           (t.form_factors ? t.form_factors->bytes() : 0) + (t.gather_hits ? t.gather_hits->bytes() : 0) +
+           (t.kept_direct ? t.kept_direct->bytes() : 0);
 }
 
-/// The memory budget less the elements and F: what the gather's hits may take.
+/// The memory budget less the elements and F: what the gather's hits and kept direct light may take.
 std::size_t hits_budget(const UniformTransport& t, const BakeSettings& settings) {
     const std::size_t held = elements_bytes(t.build.elements) + elements_bytes(t.clusters.elements) +
                              (t.form_factors ? t.form_factors->bytes() : 0);
@@ -131,6 +132,7 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
         cached.transport = std::make_unique<UniformTransport>(uniform_transport(input, settings, progress));
     }
     make_room_for_hits(*cached.transport, settings);
+    keep_direct_light(*cached.transport);
     return cached;
 }
 
@@ -139,8 +141,23 @@ void make_room_for_hits(UniformTransport& transport, const BakeSettings& setting
     transport.gather_hits->set_budget(hits_budget(transport, settings));
 }
 
+void keep_direct_light(UniformTransport& transport) {
+    if (!transport.kept_direct) transport.kept_direct = std::make_unique<KeptDirectLight>();
+    const std::size_t budget = transport.gather_hits->budget();
+    const std::size_t hits = transport.gather_hits->bytes();
+    transport.kept_direct->set_budget(hits < budget ? budget - hits : 0);
+    transport.kept_direct->begin_bake();
+}
+
 void release_transport(CachedTransport& cached, const BakeSettings& settings, BakeCache& cache) {
     CacheUse& use = cached.use;
+    UniformTransport& transport = *cached.transport;
+    if (transport.kept_direct) {
+        // Within the budget with the hits, recorded beside them; else the direct light goes (it is traced again).
+        transport.kept_direct->prune();
+        if (transport.gather_hits->bytes() + transport.kept_direct->bytes() > transport.gather_hits->budget())
+            transport.kept_direct->clear();
+    }
     if (cached.transport->gather_hits->full()) {
         use.not_kept = "the elements, form factors and the final gather's rays need more than the memory budget (" +
                        std::to_string(settings.matrix_budget_bytes >> 20) + " MB)";
@@ -149,6 +166,7 @@ void release_transport(CachedTransport& cached, const BakeSettings& settings, Ba
     }
     use.kept = true;
     use.bytes = transport_bytes(*cached.transport);
+    use.direct_bytes = transport.kept_direct ? transport.kept_direct->bytes() : 0;
     cache.keep(cached.key, std::move(cached.transport), use.bytes);
 }
 

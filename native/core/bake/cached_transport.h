@@ -35,6 +35,10 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
 /// that its elements and F leave.
 void make_room_for_hits(UniformTransport& transport, const BakeSettings& settings);
 
+/// Gives `transport` a kept direct light (if it has none) for a new bake, with room for it within
+/// what the memory budget leaves beside the hits (kept_direct_light.h).
+void keep_direct_light(UniformTransport& transport);
+
 /// Gives the transport to the cache when it fits the memory budget (and every ray set the gather
 /// traced was recorded), else empties the cache; fills `cached.use`'s kept, bytes and not_kept.
 void release_transport(CachedTransport& cached, const BakeSettings& settings, BakeCache& cache);

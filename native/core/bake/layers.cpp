@@ -204,7 +204,7 @@ LayeredBake hierarchical_layers(const SceneInput& input, const BakeSettings& set
         BakeResult& layer = layered.layers.emplace_back(detail::as_bake_result(std::move(lit)));
         const LayerInput layer_input(input, sources, k);
         detail::output_pass(layer_input.input(), layer_settings(settings, sources, k), layer.build.elements, emitted,
-                            layer, progress, &hits);
+                            layer, progress, {&hits});
         add_layer(layered.total, layer, k == 0);
         layered.layer_emission.push_back(layer.build.elements.emission);
         add(emission, layer.build.elements.emission);

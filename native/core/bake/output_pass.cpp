@@ -18,7 +18,8 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 }  // namespace
 
 void output_pass(const SceneInput& input, const BakeSettings& settings, const Elements& elements,
-                 const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress, GatherHits* hits) {
+                 const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress,
+                 const GatherKept& kept) {
     auto start = Clock::now();
     const std::vector<Rgb>& radiance = result.solve.radiance;
     result.colors = interpolate_corners(elements, radiance, input.material, settings.hard_edge_angle);
@@ -31,7 +32,7 @@ void output_pass(const SceneInput& input, const BakeSettings& settings, const El
         result.gather_cost =
             final_gather(elements, emitted, radiance, settings.lights, settings.world, settings.final_gather,
                          input.material, input.face_offsets, input.face_count, settings.hard_edge_angle, result.colors,
-                         result.light_colors, progress, &result.gather_statistics.emplace(), hits);
+                         result.light_colors, progress, &result.gather_statistics.emplace(), kept);
         result.gathered_points = result.gather_cost.gathered;
         result.interpolated_points = result.gather_cost.interpolated;
         result.buried_points = result.gather_cost.buried;

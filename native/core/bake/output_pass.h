@@ -4,7 +4,7 @@
 #pragma once
 
 #include "bake/bake.h"
-#include "output/gather_hits.h"
+#include "output/final_gather.h"
 
 namespace radiosity::detail {
 
@@ -14,9 +14,9 @@ namespace radiosity::detail {
 /// arriving. `elements` and `result.solve.radiance` are the solution (the uniform elements or the
 /// hierarchy's leaves); `emitted` each element's own emission, without the lamps' and the world's
 /// first reflection. Sets result.colors, light_colors and the gather's counts, statistics and time.
-/// `hits`: the gather's recorded hits over these elements, read and filled (gather_hits.h; null: none).
+/// `kept`: what earlier gathers over these elements kept, read and added to (final_gather.h's GatherKept).
 void output_pass(const SceneInput& input, const BakeSettings& settings, const Elements& elements,
                  const std::vector<Rgb>& emitted, BakeResult& result, const ProgressFn& progress,
-                 GatherHits* hits = nullptr);
+                 const GatherKept& kept = {});
 
 }  // namespace radiosity::detail

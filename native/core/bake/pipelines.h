@@ -5,6 +5,7 @@
 #include "bake/bake.h"
 #include "geometry/clusters.h"
 #include "output/gather_hits.h"
+#include "output/kept_direct_light.h"
 #include "transport/form_factors.h"
 
 #include <memory>
@@ -63,6 +64,9 @@ struct UniformTransport {
     /// The gather's recorded hits, read and filled by every output pass over these elements (null:
     /// each gather traces its rays).
     std::unique_ptr<GatherHits> gather_hits;
+    /// The gather's direct light per source, read and added to by every output pass over these
+    /// elements (null: each gather traces its shadow rays); kept by a BakeCache only.
+    std::unique_ptr<KeptDirectLight> kept_direct;
     double seconds_elements = 0.0, seconds_form_factors = 0.0;
 
     /// The elements the form factors and the solve are over: the clusters', or the output's.

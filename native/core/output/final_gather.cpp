@@ -13,6 +13,7 @@
 #include "output/flat_places.h"
 #include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
+#include "output/kept_direct_light.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
 #include "visibility/ray_tracer.h"
@@ -73,29 +74,33 @@ struct DirectParts {
     Rgb lamps{0.0};
 };
 
+/// What every Gatherer of one final_gather shares: the elements and their light, the sources and
+/// their signatures (kept_direct_light.h), the ray tracers and what earlier gathers kept.
+struct GatherScene {
+    const Elements& elements;
+    const std::vector<Rgb>& emitted;   ///< each element's own emission
+    const std::vector<Rgb>& radiance;  ///< the solved radiance (read flat on emitters' back sides)
+    const Lights& lights;
+    const WorldSampler& world;
+    const std::vector<Emitter>& emitters;
+    const std::vector<EmitterRun>& runs;
+    const hr::Visibility& visibility;
+    const hr::Visibility* back_sides;  ///< the back sides alone (null: there are none)
+    const CoincidentFaces& coincident;
+    float scene_size;
+    SourceSignatures signatures;
+    GatherKept kept;
+};
+
 /// The gather at one point: its element, where it starts and what it found.
 class Gatherer {
 public:
-    Gatherer(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
-             const std::vector<Rgb>& corner_field, const Lights& lights, const detail::WorldSampler& world,
-             const FinalGatherSettings& settings, const std::vector<Emitter>& emitters,
-             const std::vector<EmitterRun>& runs, const hr::Visibility& visibility, const hr::Visibility* back_sides,
-             const CoincidentFaces& coincident, float scene_size, const CornerWedges* wedges = nullptr,
-             GatherHits* hits = nullptr)
-        : elements_(elements),
-          emitted_(emitted),
-          radiance_(radiance),
+    Gatherer(const GatherScene& scene, const std::vector<Rgb>& corner_field, const FinalGatherSettings& settings,
+             const CornerWedges* wedges = nullptr)
+        : scene_(scene),
+          elements_(scene.elements),
           corner_field_(corner_field),
-          lights_(lights),
-          world_(world),
-          emitters_(emitters),
-          runs_(runs),
-          visibility_(visibility),
-          back_sides_(back_sides),
-          coincident_(coincident),
           wedges_(wedges),
-          hits_(hits),
-          scene_size_(scene_size),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
 
@@ -132,7 +137,7 @@ public:
         }
         for (int i = 0; i < count; ++i) {
             const Vec3 x = candidates[i];
-            if (coincident_.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
+            if (scene_.coincident.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
             const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, outputs)) continue;  // buried
@@ -140,7 +145,7 @@ public:
             if (!direct_known) direct_light = direct(x, origin, n, seed);
             if (outputs.reads != nullptr) outputs.reads->direct = direct_light;
             light = direct_light + indirect;
-            out = emitted_[e] + elements_.reflectance[e] * light;
+            out = scene_.emitted[e] + elements_.reflectance[e] * light;
             if (outputs.moved != nullptr) *outputs.moved = i > 0;
             return true;
         }
@@ -156,9 +161,9 @@ public:
                           Rgb& light) const {
         const Vec3 x = first_point(vertex, e, approach);
         const Vec3 n = elements_.normal[e];
-        if (coincident_.covered(x, e)) {
+        if (scene_.coincident.covered(x, e)) {
             light = Rgb(0.0);
-            out = emitted_[e];
+            out = scene_.emitted[e];
             return true;
         }
         const Vec3 origin = lifted(x, n);
@@ -168,14 +173,14 @@ public:
         if (gather_indirect(origin, n, seed, glm::length(elements_.centre[e] - x), indirect, seam_share, {}, true))
             return false;
         light = direct(x, origin, n, seed) + indirect;
-        out = emitted_[e] + elements_.reflectance[e] * light;
+        out = scene_.emitted[e] + elements_.reflectance[e] * light;
         return true;
     }
 
     /// Whether element vertex `vertex` of element `e` is gathered where another polygon's face lies
     /// on its own (coincident_faces.h).
     bool covered(int32_t vertex, std::size_t e, const Vec3& approach) const {
-        return coincident_.covered(first_point(vertex, e, approach), e);
+        return scene_.coincident.covered(first_point(vertex, e, approach), e);
     }
 
     /// The direct light (irradiance / pi) where element vertex `vertex` of element `e` is gathered,
@@ -198,7 +203,7 @@ public:
         const Vec3 origin = lifted(out.position, elements_.normal[e]);
         const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
         uint32_t seed = mix_seed(place, 0x960BEU);
-        RecordedRays recorded(hits_, origin, elements_.normal[e], seed, grid, GatherHits::Kind::Probe);
+        RecordedRays recorded(scene_.kept.hits, origin, elements_.normal[e], seed, grid, GatherHits::Kind::Probe);
         double inverse = 0.0;
         int hits = 0;
         out.nearest = far;
@@ -209,7 +214,7 @@ public:
                 const double v = (double(i / grid) + next_jitter(seed)) / grid;
                 const Vec3 direction(cosine_direction(n, t, b, u, v));
                 // The fronts alone, whether or not they emit: which points gather may not depend on the light.
-                const hr::Visibility::Hit traced = visibility_.first_hit(origin, direction, 0.0f);
+                const hr::Visibility::Hit traced = scene_.visibility.first_hit(origin, direction, 0.0f);
                 return std::make_pair(traced,
                                       traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) >= 0.0f);
             });
@@ -230,7 +235,11 @@ public:
     /// a point at `place` is.
     DirectParts direct_at(const Vec3& x, std::size_t e, uint32_t place) const {
         const Vec3 n = elements_.normal[e];
-        return direct_parts(x, lifted(x, n), n, mix_seed(place, 0x5EEDU));
+        const uint32_t seed = mix_seed(place, 0x5EEDU);
+        KeptDirectLight::Point kept(scene_.kept.direct, x, n, seed);
+        DirectParts parts = direct_parts(x, lifted(x, n), n, seed, kept);
+        kept.finish();
+        return parts;
     }
 
     /// How much more direct light arrives at `x`, a hair inside element `e` next to the point of
@@ -239,14 +248,17 @@ public:
     /// shadow rays, and the lamps'. The world's light is taken to be the same.
     Rgb direct_change(const DirectParts& from, const Vec3& x, std::size_t e, uint32_t place) const {
         const Vec3 n = elements_.normal[e];
+        const uint32_t seed = mix_seed(place, 0x5EEDU);
+        KeptDirectLight::Point kept(scene_.kept.direct, x, n, seed);
         Rgb change(0.0);
         for (std::size_t g = 0; g < from.emitters.groups.size(); ++g) {
             const EmitterGroup& group = from.emitters.groups[g];
             if (!(max_channel(group.light) > 0.0)) continue;
-            const double share = visible_share(from.emitters, group, lifted(x, n), n, mix_seed(place, 0x5EEDU));
+            const double share = kept_share(from.emitters, group, lifted(x, n), n, seed, kept);
             change += group.light * (share - from.share[g]);
         }
-        if (!lights_.empty()) change += lamp_irradiance(lights_, visibility_, x, n) / M_PI - from.lamps;
+        if (!scene_.lights.empty()) change += kept_lamps(x, n, kept) / M_PI - from.lamps;
+        kept.finish();
         return change;
     }
 
@@ -267,9 +279,9 @@ public:
         if (!(to_centre > 0.0f)) return corner;
         if (glm::dot(approach, approach) > 0.0f) {
             // Where Cycles bakes an input corner, along the approach.
-            return corner + std::min(to_centre, bake_offset(corner, scene_size_)) * approach;
+            return corner + std::min(to_centre, bake_offset(corner, scene_.scene_size)) * approach;
         }
-        const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_size_);
+        const float hair = std::min(1e-3f * to_centre, 1e-4f * scene_.scene_size);
         return corner + (hair / to_centre) * towards;
     }
 
@@ -292,9 +304,9 @@ private:
         RaySpread spread(elements_, outputs.statistics, grid_);
         std::optional<GradientSamples> gradients;
         if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
-        RecordedRays recorded(hits_, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
+        RecordedRays recorded(scene_.kept.hits, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
         const GatherHits::Slots* known_slots =
-            reads != nullptr && hits_ != nullptr ? hits_->find_slots(recorded.key()) : nullptr;
+            reads != nullptr && scene_.kept.hits != nullptr ? scene_.kept.hits->find_slots(recorded.key()) : nullptr;
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             bool meets_front = false;
@@ -303,21 +315,21 @@ private:
                 const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
                 const Vec3 direction(cosine_direction(n, t, b, u, v));
                 const hr::Visibility::Hit traced =
-                    facing(visibility_.first_hit(origin, direction, 0.0f), origin, direction);
+                    facing(scene_.visibility.first_hit(origin, direction, 0.0f), origin, direction);
                 return std::make_pair(traced,
                                       traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f);
             });
             if (hit.patch < 0) continue;
             if (meets_front) {
                 const Rgb wedge = wedge_light(hit);
-                const Rgb seen = radiance_near(hit) + wedge - emitted_[hit.patch];
+                const Rgb seen = radiance_near(hit) + wedge - scene_.emitted[hit.patch];
                 sum += seen;
                 spread.add(i, seen, hit);
                 if (gradients) gradients->add(i, seen, hit.distance);
                 const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
                 at_seam += seam;
                 if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
-                    rest += wedge - emitted_[hit.patch];
+                    rest += wedge - scene_.emitted[hit.patch];
                     if (known_slots == nullptr) add_weights(hit, slots);
                 } else {
                     rest += seen;
@@ -343,7 +355,7 @@ private:
                 if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
                 reads->slots.back().second += weight / double(rays);
             }
-            if (hits_ != nullptr) hits_->record_slots(recorded.key(), reads->slots);
+            if (scene_.kept.hits != nullptr) scene_.kept.hits->record_slots(recorded.key(), reads->slots);
         }
         if (reads != nullptr) reads->indirect = rest / double(rays);
         return !buried;
@@ -361,21 +373,26 @@ private:
     /// sides apart).
     hr::Visibility::Hit facing(hr::Visibility::Hit hit, const Vec3& origin, const Vec3& direction) const {
         if (hit.patch < 0 || glm::dot(direction, elements_.normal[hit.patch]) < 0.0f) return hit;
-        if (back_sides_ == nullptr || !elements_.has_twin(std::size_t(hit.patch))) return hit;
-        const float tolerance = 1e-5f * scene_size_ + 1e-4f * hit.distance;
+        if (scene_.back_sides == nullptr || !elements_.has_twin(std::size_t(hit.patch))) return hit;
+        const float tolerance = 1e-5f * scene_.scene_size + 1e-4f * hit.distance;
         const hr::Visibility::Hit back =
-            back_sides_->first_hit(origin, direction, std::max(0.0f, hit.distance - tolerance));
+            scene_.back_sides->first_hit(origin, direction, std::max(0.0f, hit.distance - tolerance));
         return back.patch >= 0 && back.distance <= hit.distance + tolerance ? back : hit;
     }
 
     /// Emitting elements at x (exact unoccluded factors times their visible share), lamps and the
-    /// world (EmitterGroups).
+    /// world (EmitterGroups), each source's part read where the gathers before kept it.
     Rgb direct(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        const DirectParts parts = direct_parts(x, origin, normal, seed);
+        KeptDirectLight::Point kept(scene_.kept.direct, x, normal, seed);
+        const DirectParts parts = direct_parts(x, origin, normal, seed, kept);
         Rgb light(0.0);
         for (std::size_t g = 0; g < parts.share.size(); ++g) light += parts.emitters.groups[g].light * parts.share[g];
         light += parts.lamps;
-        if (!world_.empty()) light += world_.irradiance(visibility_, origin, normal, mix_seed(seed, 0x3011DU)) / M_PI;
+        if (!scene_.world.empty())
+            light += kept.light(scene_.signatures.world, [&] {
+                return scene_.world.irradiance(scene_.visibility, origin, normal, mix_seed(seed, 0x3011DU));
+            }) / M_PI;
+        kept.finish();
         return light;
     }
 
@@ -383,13 +400,50 @@ private:
     /// and the lamps'. The factors are taken at `origin` too: at x itself, which lies in its own
     /// element's plane, round-off may put x in front of that element's back side (an emitter that
     /// emits from both sides), whose factor from a point in its plane is then the whole hemisphere.
-    DirectParts direct_parts(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed) const {
-        DirectParts parts{emitter_groups(emitters_, runs_, glm::dvec3(origin), glm::dvec3(normal)), {}, Rgb(0.0)};
+    DirectParts direct_parts(const Vec3& x, const Vec3& origin, const Vec3& normal, uint32_t seed,
+                             KeptDirectLight::Point& kept) const {
+        DirectParts parts{
+            emitter_groups(scene_.emitters, scene_.runs, glm::dvec3(origin), glm::dvec3(normal)), {}, Rgb(0.0)};
         for (const EmitterGroup& group : parts.emitters.groups)
-            parts.share.push_back(visible_share(parts.emitters, group, origin, normal, seed));
-        if (!lights_.empty())
-            parts.lamps = lamp_irradiance(lights_, visibility_, x, normal) / M_PI;  // its rays leave a gap
+            parts.share.push_back(kept_share(parts.emitters, group, origin, normal, seed, kept));
+        if (!scene_.lights.empty()) parts.lamps = kept_lamps(x, normal, kept) / M_PI;  // its rays leave a gap
         return parts;
+    }
+
+    /// The lamps' irradiance at x, each traced lamp's read from `kept` under its signature if there.
+    Rgb kept_lamps(const Vec3& x, const Vec3& normal, KeptDirectLight::Point& kept) const {
+        return lamp_irradiance_through(scene_.lights, scene_.visibility, x, normal,
+                                       [&](std::size_t l, bool fully, const auto& trace) {
+                                           return kept.light(scene_.signatures.lamps[l][fully], trace);
+                                       });
+    }
+
+    /// visible_share, read from `kept` under the group's signature if there.
+    double kept_share(const EmitterGroups& groups, const EmitterGroup& group, const Vec3& origin, const Vec3& normal,
+                      uint32_t seed, KeptDirectLight::Point& kept) const {
+        if (!(max_channel(group.light) > 0.0)) return 0.0;
+        return kept
+            .light(group_signature(groups, group),
+                   [&] { return Rgb(visible_share(groups, group, origin, normal, seed)); })
+            .r;
+    }
+
+    /// How many shadow rays `group` gets of the point's (visible_share).
+    double group_rays(const EmitterGroups& groups, const EmitterGroup& group) const {
+        return std::max(1.0, std::round(shadow_rays_ * max_channel(group.light) / groups.total));
+    }
+
+    /// What visible_share reads besides the point and the geometry: the group's elements (those
+    /// facing the point), their radiance and its rays.
+    uint64_t group_signature(const EmitterGroups& groups, const EmitterGroup& group) const {
+        Signature signature;
+        signature.word(0x6A0U).number(group_rays(groups, group)).number(group.area);
+        signature.word(uint32_t(group.first)).word(uint32_t(group.last));
+        for (std::size_t i = group.first; i < group.last; ++i) {
+            signature.word(groups.faces[i]);
+            if (groups.faces[i]) signature.rgb(scene_.emitters[i].radiance);
+        }
+        return signature.value();
     }
 
     /// The share of `group` that shadow rays from `origin` find unhidden. The group gets its share of
@@ -401,15 +455,15 @@ private:
                          uint32_t seed) const {
         const double weight = max_channel(group.light);
         if (!(weight > 0.0)) return 0.0;
-        const double rays = std::max(1.0, std::round(shadow_rays_ * weight / groups.total));
-        uint32_t pick_seed = mix_seed(seed, uint32_t(emitters_[group.first].element) ^ 0x9A0BU);
+        const double rays = group_rays(groups, group);
+        uint32_t pick_seed = mix_seed(seed, uint32_t(scene_.emitters[group.first].element) ^ 0x9A0BU);
         double next_pick = next_jitter(pick_seed) * group.area / rays, covered = 0.0;
         double visible = 0.0, seen = 0.0;
         int clear = 0, cast = 0;
         std::array<Vec3, 256> points;
         for (std::size_t i = group.first; i < group.last; ++i) {
             if (!groups.faces[i]) continue;
-            const Emitter& source = emitters_[i];
+            const Emitter& source = scene_.emitters[i];
             covered += source.area;
             int picks = 0;
             for (; next_pick < covered; next_pick += group.area / rays) ++picks;
@@ -427,7 +481,7 @@ private:
                                                       (r2 * r2)
                                                 : 0.0;
                 const bool seen_clear =
-                    unhidden(visibility_, elements_, origin, points[k], Vec3(source.normal), scene_size_);
+                    unhidden(scene_.visibility, elements_, origin, points[k], Vec3(source.normal), scene_.scene_size);
                 clear += seen_clear;
                 ++cast;
                 seen += sample_weight * kernel;
@@ -442,7 +496,7 @@ private:
     /// Cornell box at the Medium preset, 1.00% RMS from Cycles against 1.19% with flat values.
     Rgb radiance_near(const hr::Visibility::Hit& hit) const {
         const std::size_t h = std::size_t(hit.patch);
-        if (elements_.is_back(h)) return radiance_[h];  // not written, so no corner colours
+        if (elements_.is_back(h)) return scene_.radiance[h];  // not written, so no corner colours
         return blend_corners(elements_, h, &corner_field_[4 * h], hit.u, hit.v);
     }
 
@@ -453,7 +507,7 @@ private:
     }
 
     /// Where the rays from a point x on a surface of normal n leave.
-    Vec3 lifted(const Vec3& x, const Vec3& n) const { return x + (kLift * scene_size_) * n; }
+    Vec3 lifted(const Vec3& x, const Vec3& n) const { return x + (kLift * scene_.scene_size) * n; }
 
     /// How far above their point rays leave, relative to the scene's size.
     static constexpr float kLift = 1e-6f;
@@ -462,20 +516,10 @@ private:
     /// surface right at a seam, whose light the rays read there.
     static constexpr float kSeam = 0.01f;
 
+    const GatherScene& scene_;
     const Elements& elements_;
-    const std::vector<Rgb>& emitted_;
-    const std::vector<Rgb>& radiance_;
     const std::vector<Rgb>& corner_field_;
-    const Lights& lights_;
-    const WorldSampler& world_;
-    const std::vector<Emitter>& emitters_;
-    const std::vector<EmitterRun>& runs_;
-    const hr::Visibility& visibility_;
-    const hr::Visibility* back_sides_;  ///< the back sides alone (null: there are none)
-    const CoincidentFaces& coincident_;
     const CornerWedges* wedges_;
-    GatherHits* hits_;  ///< recorded hits read and kept (null: every ray traced)
-    float scene_size_;
     int grid_, shadow_rays_;
 };
 
@@ -917,7 +961,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                         const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                         const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                         float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                        const ProgressFn& progress, GatherStatistics* statistics, GatherHits* hits) {
+                        const ProgressFn& progress, GatherStatistics* statistics, const GatherKept& kept) {
     GatherCost cost;
     if (elements.size() == 0) return cost;
     const auto started = std::chrono::steady_clock::now();
@@ -939,6 +983,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     const std::vector<Emitter> emitters = emitting_elements(elements, emitted);
     const std::vector<EmitterRun> runs = emitter_runs(elements, emitters);
     const WorldSampler world_sampler(world);
+    const GatherScene scene{elements,      emitted,    radiance,   lights,
+                            world_sampler, emitters,   runs,       visibility,
+                            back_sides,    coincident, scene_size, source_signatures(lights, world),
+                            kept};
     const PolygonCentres polygon_centre(elements);
     const std::vector<uint8_t> turning = turning_vertices(elements, place, places);
     const std::vector<int32_t> same_place = flat_place_vertices(elements, place, places, seam, turning);
@@ -958,9 +1006,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
-        const Gatherer field_gatherer(elements, emitted, radiance, colors.element_corner, lights, world_sampler,
-                                      field_settings, emitters, runs, visibility, back_sides, coincident, scene_size,
-                                      nullptr, hits);
+        const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
@@ -970,8 +1016,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         FinalGatherSettings wedge_settings = settings;
         wedge_settings.rays = 4 * settings.field_rays;
         wedge_settings.shadow_rays = std::max(1, settings.shadow_rays / 4);
-        const Gatherer wedge_gatherer(elements, emitted, radiance, field, lights, world_sampler, wedge_settings,
-                                      emitters, runs, visibility, back_sides, coincident, scene_size, nullptr, hits);
+        const Gatherer wedge_gatherer(scene, field, wedge_settings);
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     }
@@ -1010,19 +1055,15 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     if (settings.field_rays > 0) seam_settings.rays = std::min(settings.rays, 4 * settings.field_rays);
     std::vector<uint8_t> keep_vertex = seam_vertices(elements, place, places, true);
     for (std::size_t v = 0; v < keep_vertex.size(); ++v) keep_vertex[v] |= turning[v];
-    const SharedLight shared =
-        share_light(Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                             visibility, back_sides, coincident, scene_size, nullptr, hits),
-                    elements, gathered, approach, place, keep_vertex, settings.cache_accuracy, scene_size, progress);
+    const SharedLight shared = share_light(Gatherer(scene, field, settings), elements, gathered, approach, place,
+                                           keep_vertex, settings.cache_accuracy, scene_size, progress);
     meter.add_to(cost.probes);
     const std::vector<std::size_t> direct_from = shared_direct_light(gathered, shared, same_place);
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
-        const Gatherer gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs,
-                                visibility, back_sides, coincident, scene_size, &wedges, hits);
-        const Gatherer seam_gatherer(elements, emitted, radiance, field, lights, world_sampler, seam_settings, emitters,
-                                     runs, visibility, back_sides, coincident, scene_size, &wedges, hits);
+        const Gatherer gatherer(scene, field, settings, &wedges);
+        const Gatherer seam_gatherer(scene, field, seam_settings, &wedges);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
@@ -1063,10 +1104,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
     read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
     meter.add_to(cost.seams);
-    bake_buried_corners_as_cycles(
-        Gatherer(elements, emitted, radiance, field, lights, world_sampler, settings, emitters, runs, visibility,
-                 back_sides, coincident, scene_size, &wedges, hits),
-        gathered, moved, approach, place, progress, p);
+    bake_buried_corners_as_cycles(Gatherer(scene, field, settings, &wedges), gathered, moved, approach, place, progress,
+                                  p);
     meter.add_to(cost.points);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the

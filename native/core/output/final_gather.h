@@ -80,10 +80,17 @@
 #include "output/gather_hits.h"
 #include "output/gather_statistics.h"
 #include "output/interpolation.h"
+#include "output/kept_direct_light.h"
 #include "transport/lights.h"
 #include "transport/world.h"
 
 namespace radiosity::detail {
+
+/// What earlier gathers over the same elements kept, read and added to by the next (null: nothing).
+struct GatherKept {
+    GatherHits* hits = nullptr;         ///< the indirect and probe rays' hits (gather_hits.h)
+    KeptDirectLight* direct = nullptr;  ///< the direct light, source by source (kept_direct_light.h)
+};
 
 /// Replaces `colors` (interpolated from the solved radiance) at the output corners; counts the
 /// vertices gathered, those whose indirect light was read from gathered ones, and those left
@@ -94,13 +101,15 @@ namespace radiosity::detail {
 /// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
 /// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
 /// each later pass; throws Cancelled. `statistics`, if given, takes what the gather found at the
-/// output corners besides their colours (gather_statistics.h). `hits`, if given, holds the indirect
-/// and probe rays' hits of earlier gathers over the same elements (gather_hits.h): those are read
-/// instead of traced, the others traced and kept, and the colours are the same to the bit.
+/// output corners besides their colours (gather_statistics.h). `kept` holds what earlier gathers over
+/// the same elements found: the indirect and probe rays' hits and each source's direct light at each
+/// point; what is there is read instead of traced, the rest traced and kept, and the colours are the
+/// same to the bit.
 GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<Rgb>& radiance,
                         const Lights& lights, const WorldLight& world, const FinalGatherSettings& settings,
                         const int32_t* material, const int32_t* face_offsets, std::size_t face_count,
                         float hard_edge_angle, CornerColors& colors, CornerColors& light_colors,
-                        const ProgressFn& progress, GatherStatistics* statistics = nullptr, GatherHits* hits = nullptr);
+                        const ProgressFn& progress, GatherStatistics* statistics = nullptr,
+                        const GatherKept& kept = {});
 
 }  // namespace radiosity::detail

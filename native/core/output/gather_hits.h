@@ -10,8 +10,7 @@
 /// solved radiance there less its emission) depends on them; Christensen's photon-map final gather
 /// and the irradiance cache of Ward et al. rely on the same split. Recorded hits are exactly what
 /// Embree returns for those rays, so a gather that reads them gives bit for bit the colours a gather
-/// that traces them gives. Shadow rays (lamps, emitters, the World) are not kept: how many each
-/// source gets depends on the sources' strengths, so they are traced again.
+/// that traces them gives. Shadow rays are kept as each source's light (kept_direct_light.h).
 #pragma once
 
 #include "visibility/ray_tracer.h"
@@ -61,6 +60,7 @@ public:
     /// Whether some ray set was left unrecorded for the budget.
     bool full() const { return full_.load(std::memory_order_relaxed); }
     void set_budget(std::size_t budget_bytes) { budget_bytes_ = budget_bytes; }
+    std::size_t budget() const { return budget_bytes_; }
 
 private:
     struct KeyHash {

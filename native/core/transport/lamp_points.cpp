@@ -2,9 +2,6 @@
 /// @brief The lamps' irradiance at points (lamp_points.h, lights.h).
 #include "transport/lamp_points.h"
 
-#include "transport/cone.h"
-#include "transport/lamp_choice.h"
-
 #include <tbb/parallel_for.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -16,20 +13,8 @@ namespace radiosity {
 namespace detail {
 
 Rgb lamp_irradiance(const Lights& lights, const hr::Visibility& visibility, const Vec3& x, const Vec3& normal) {
-    thread_local std::vector<Rgb> unshadowed;
-    const std::size_t points = lights.points.size();
-    unshadowed.resize(points + lights.suns.size());
-    for (std::size_t l = 0; l < points; ++l) unshadowed[l] = point_unshadowed(lights.points[l], x, normal);
-    for (std::size_t s = 0; s < lights.suns.size(); ++s)
-        unshadowed[points + s] = sun_unshadowed(lights.suns[s], normal);
-    return sum_over_lamps(unshadowed, position_seed(x, 0x1A3FU), [&](std::size_t l, uint32_t seed, bool fully) {
-        if (l < points) {
-            const PointLight& lamp = lights.points[l];
-            return point_irradiance(lamp, visibility, x, normal, fully ? point_rays(lamp, x) : 1, seed);
-        }
-        const SunLight& sun = lights.suns[l - points];
-        return sun_irradiance(sun, visibility, x, normal, fully ? sun_rays(sun) : 1, seed);
-    });
+    return lamp_irradiance_through(lights, visibility, x, normal,
+                                   [](std::size_t, bool, const auto& trace) { return trace(); });
 }
 
 }  // namespace detail

@@ -129,6 +129,32 @@ TEST(BakeCache, AReBakeAfterALightingOrMaterialEditIsTheBakeFromScratch) {
     }
 }
 
+TEST(BakeCache, AReBakeTracesShadowRaysTowardsTheChangedSourcesAlone) {
+    test::SceneArrays scene = lit_floor();
+    BakeSettings settings = lit_settings();
+    BakeCache cache;
+    const BakeResult first = bake(scene.input(), settings, {}, &cache);
+    ASSERT_TRUE(first.cache->kept);
+    EXPECT_GT(first.cache->direct_bytes, 0u);
+    EXPECT_LT(first.cache->direct_bytes, first.cache->bytes);
+    EXPECT_EQ(first.cache->bytes, cache.bytes());
+    // Nothing changed: every hit and every source's light at every point is kept, no ray is traced.
+    const BakeResult same = bake(scene.input(), settings, {}, &cache);
+    EXPECT_EQ(same.gather_cost.rays(), 0u);
+    expect_same_bake(same, first, "nothing changed");
+    // One lamp moved: its shadow rays alone, fewer than a re-bake that moves every lamp and the sun.
+    settings.lights.points[0].position.x -= 0.4f;
+    const BakeResult one = bake(scene.input(), settings, {}, &cache);
+    EXPECT_GT(one.gather_cost.rays(), 0u);
+    for (PointLight& lamp : settings.lights.points) lamp.position.y += 0.1f;
+    settings.lights.suns[0].direction = Vec3(0, 0, -1);
+    const BakeResult all = bake(scene.input(), settings, {}, &cache);
+    EXPECT_LT(3 * one.gather_cost.rays(), all.gather_cost.rays());
+    expect_same_bake(all, bake(scene.input(), settings), "every lamp moved");
+    // The moved lamps' old light is let go: what is kept stays one bake's.
+    EXPECT_LE(all.cache->direct_bytes, first.cache->direct_bytes + first.cache->direct_bytes / 10);
+}
+
 TEST(BakeCache, AChangeOfGeometryOrOfWhatEmitsBakesAfresh) {
     test::SceneArrays scene = lit_floor();
     const BakeSettings settings = lit_settings();
