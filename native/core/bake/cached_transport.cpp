@@ -2,6 +2,7 @@
 /// @brief The uniform bake's transport from a BakeCache, and back (cached_transport.h).
 #include "bake/cached_transport.h"
 
+#include "common/word_hash.h"
 #include "geometry/surface_textures.h"
 
 #include <chrono>
@@ -11,40 +12,22 @@
 namespace radiosity::detail {
 namespace {
 
-/// FNV-1a over 32-bit words (Fowler, Noll and Vo).
-class Hash {
-public:
-    void word(uint32_t w) {
-        h_ ^= w;
-        h_ *= 1099511628211ULL;
-    }
-    void size(std::size_t n) {
-        word(uint32_t(n));
-        word(uint32_t(uint64_t(n) >> 32));
-    }
-    void number(float x) {
-        uint32_t w;
-        std::memcpy(&w, &x, sizeof w);
-        word(w);
-    }
-    template <typename T>
-    void array(const T* values, std::size_t count) {
-        static_assert(sizeof(T) == 4 || sizeof(T) == 1);
-        size(values == nullptr ? 0 : count + 1);
-        if (values == nullptr) return;
-        for (std::size_t i = 0; i < count; ++i) {
-            uint32_t w = 0;
-            std::memcpy(&w, &values[i], sizeof(T));
-            word(w);
-        }
-    }
-    uint64_t value() const { return h_; }
+using detail::WordHash;
 
-private:
-    uint64_t h_ = 1469598103934665603ULL;
-};
+/// `count` values of 1 or 4 bytes, a word each, after their count (0 for none given).
+template <typename T>
+void hash_array(WordHash& h, const T* values, std::size_t count) {
+    static_assert(sizeof(T) == 4 || sizeof(T) == 1);
+    h.size(values == nullptr ? 0 : count + 1);
+    if (values == nullptr) return;
+    for (std::size_t i = 0; i < count; ++i) {
+        uint32_t w = 0;
+        std::memcpy(&w, &values[i], sizeof(T));
+        h.word(w);
+    }
+}
 
-void hash_settings(const BakeSettings& settings, Hash& h) {
+void hash_settings(const BakeSettings& settings, WordHash& h) {
     h.number(settings.element_size);
     h.size(settings.limits.max_elements);
     h.number(settings.limits.max_aspect);
@@ -103,13 +86,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 uint64_t geometry_key(const SceneInput& input, const BakeSettings& settings) {
-    Hash h;
-    h.array(input.positions, 3 * input.vertex_count);
-    h.array(input.face_offsets, input.face_count + 1);
+    WordHash h;
+    hash_array(h, input.positions, 3 * input.vertex_count);
+    hash_array(h, input.face_offsets, input.face_count + 1);
     const std::size_t corners = input.face_offsets != nullptr ? std::size_t(input.face_offsets[input.face_count]) : 0;
-    h.array(input.corner_vertices, corners);
-    h.array(input.material, input.face_count);
-    h.array(input.front_only, input.face_count);
+    hash_array(h, input.corner_vertices, corners);
+    hash_array(h, input.material, input.face_count);
+    hash_array(h, input.front_only, input.face_count);
     for (std::size_t f = 0; f < input.face_count; ++f)  // emitting polygons have back sides
         h.word(uint32_t(input.emission[3 * f] > 0.0f || input.emission[3 * f + 1] > 0.0f ||
                         input.emission[3 * f + 2] > 0.0f));

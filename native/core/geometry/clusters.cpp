@@ -3,6 +3,7 @@
 /// quads no longer than the element size (clusters.h).
 #include "geometry/clusters.h"
 
+#include "common/word_hash.h"
 #include "geometry/polygon_geometry.h"
 
 #include <glm/geometric.hpp>
@@ -10,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -83,22 +83,13 @@ struct EdgeKey {
 };
 
 struct EdgeHash {
-    std::size_t operator()(const EdgeKey& key) const {
-        std::size_t h = 1469598103934665603ull;
-        for (const uint32_t b : key.bits) h = (h ^ b) * 1099511628211ull;
-        return h;
-    }
+    std::size_t operator()(const EdgeKey& key) const { return detail::WordsHash()(key.bits); }
 };
 
-uint32_t bits_of(float x) {
-    x += 0.0f;  // -0 and +0 are one place
-    uint32_t b;
-    std::memcpy(&b, &x, sizeof b);
-    return b;
-}
-
 EdgeKey edge_key(const Vec3& from, const Vec3& to) {
-    return {{bits_of(from.x), bits_of(from.y), bits_of(from.z), bits_of(to.x), bits_of(to.y), bits_of(to.z)}};
+    using detail::float_bits;
+    return {{float_bits(from.x), float_bits(from.y), float_bits(from.z), float_bits(to.x), float_bits(to.y),
+             float_bits(to.z)}};
 }
 
 /// Where an oriented edge is: its region and the corner it starts at; region -1 when two regions

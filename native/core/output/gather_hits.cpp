@@ -2,16 +2,10 @@
 /// @brief The final gather's recorded hits (gather_hits.h).
 #include "output/gather_hits.h"
 
-#include <cstring>
+#include "common/word_hash.h"
 
 namespace radiosity {
 namespace {
-
-uint32_t bits(float value) {
-    uint32_t out;
-    std::memcpy(&out, &value, sizeof out);
-    return out;
-}
 
 /// Bytes a recorded set holds besides its hits: the key, the vector and the map's node.
 constexpr std::size_t kSetOverhead = sizeof(GatherHits::Key) + sizeof(std::vector<hr::Visibility::Hit>) + 32;
@@ -19,19 +13,12 @@ constexpr std::size_t kSetOverhead = sizeof(GatherHits::Key) + sizeof(std::vecto
 }  // namespace
 
 GatherHits::Key GatherHits::key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind) {
-    return Key{{bits(origin.x), bits(origin.y), bits(origin.z), bits(normal.x), bits(normal.y), bits(normal.z), seed,
-                (uint32_t(grid) << 1) | uint32_t(kind)}};
+    using detail::float_bits;
+    return Key{{float_bits(origin.x), float_bits(origin.y), float_bits(origin.z), float_bits(normal.x),
+                float_bits(normal.y), float_bits(normal.z), seed, (uint32_t(grid) << 1) | uint32_t(kind)}};
 }
 
-std::size_t GatherHits::KeyHash::operator()(const Key& key) const {
-    // FNV-1a over the key's words.
-    uint64_t h = 1469598103934665603ULL;
-    for (const uint32_t word : key.words) {
-        h ^= word;
-        h *= 1099511628211ULL;
-    }
-    return std::size_t(h ^ (h >> 29));
-}
+std::size_t GatherHits::KeyHash::operator()(const Key& key) const { return detail::WordsHash()(key.words); }
 
 GatherHits::Shard& GatherHits::shard(const Key& key) const { return shards_[KeyHash()(key) % kShards]; }
 

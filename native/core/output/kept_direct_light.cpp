@@ -3,37 +3,14 @@
 #include "output/kept_direct_light.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace radiosity {
 namespace {
-
-uint32_t bits(float value) {
-    uint32_t out;
-    std::memcpy(&out, &value, sizeof out);
-    return out;
-}
 
 /// Bytes a kept point holds besides its values: the key, the vector and the map's node.
 constexpr std::size_t kPointOverhead = sizeof(KeptDirectLight::Key) + sizeof(std::vector<KeptDirectLight::Value>) + 32;
 
 }  // namespace
-
-Signature& Signature::number(float x) { return word(bits(x)); }
-
-Signature& Signature::number(double x) {
-    uint64_t w;
-    std::memcpy(&w, &x, sizeof w);
-    return word(uint32_t(w)).word(uint32_t(w >> 32));
-}
-
-uint64_t Signature::value() const {
-    // splitmix64's finaliser (Steele, Lea and Flood 2014): FNV's low bits alone mix poorly.
-    uint64_t z = h_;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
 
 namespace {
 
@@ -69,14 +46,12 @@ SourceSignatures source_signatures(const Lights& lights, const WorldLight& world
 }
 
 KeptDirectLight::Key KeptDirectLight::key(const Vec3& x, const Vec3& normal, uint32_t seed) {
-    return Key{{bits(x.x), bits(x.y), bits(x.z), bits(normal.x), bits(normal.y), bits(normal.z), seed}};
+    using detail::float_bits;
+    return Key{{float_bits(x.x), float_bits(x.y), float_bits(x.z), float_bits(normal.x), float_bits(normal.y),
+                float_bits(normal.z), seed}};
 }
 
-std::size_t KeptDirectLight::KeyHash::operator()(const Key& key) const {
-    Signature s;
-    for (const uint32_t word : key.words) s.word(word);
-    return std::size_t(s.value());
-}
+std::size_t KeptDirectLight::KeyHash::operator()(const Key& key) const { return detail::WordsHash()(key.words); }
 
 KeptDirectLight::Shard& KeptDirectLight::shard(const Key& key) { return shards_[KeyHash()(key) % kShards]; }
 

@@ -21,6 +21,7 @@
 #pragma once
 
 #include "common/types.h"
+#include "common/word_hash.h"
 #include "transport/lights.h"
 #include "transport/world.h"
 
@@ -114,23 +115,8 @@ private:
     uint32_t bake_ = 1;
 };
 
-/// A signature of words (FNV-1a, Fowler, Noll and Vo, with a final mix): what a kept value was made from.
-class Signature {
-public:
-    Signature& word(uint32_t w) {
-        h_ ^= w;
-        h_ *= 1099511628211ULL;
-        return *this;
-    }
-    Signature& number(float x);
-    Signature& number(double x);
-    Signature& rgb(const Rgb& c) { return number(c.r).number(c.g).number(c.b); }
-    Signature& vec(const Vec3& v) { return number(v.x).number(v.y).number(v.z); }
-    uint64_t value() const;
-
-private:
-    uint64_t h_ = 1469598103934665603ULL;
-};
+/// A signature of what a kept value was made from.
+using Signature = detail::WordHash;
 
 /// What the gather's direct light reads of the lamps and the World, as signatures.
 struct SourceSignatures {
