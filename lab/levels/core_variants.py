@@ -16,7 +16,6 @@ method=gauss_seidel;final_gather=False;matrix_budget_bytes=6291456000"
 A variant is ';'-separated keyword=value pairs of `_core.bake` ("-": the call as the add-on makes it).
 """
 
-import argparse
 import os
 import sys
 import time
@@ -71,11 +70,7 @@ def per_polygon(result, key, polygons):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--addon-zip", required=True)
-    parser.add_argument("--blend", required=True)
-    parser.add_argument("--object", default="BakeMesh")
-    parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
+    parser = variants.level_arguments()
     parser.add_argument("--variants", default="-")
     parser.add_argument("--polygons", help="a .npz for each variant's light per input polygon")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
@@ -84,7 +79,7 @@ def main():
     mesh = bpy.data.objects[args.object].data
     cached = np.load(args.truth)
     positions = cached["positions"].reshape(-1, 3)
-    lamps = np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
+    lamps = variants.lamp_positions()
     scene, base, core = captured_call(addon)
     energy = sys.modules[harness.MODULE + ".engine.energy"]
     saved = {}

@@ -12,7 +12,6 @@ triangles cost. Run inside Blender:
 One --cuts per process, so that the peak memory is that bake's.
 """
 
-import argparse
 import os
 import resource
 import sys
@@ -43,11 +42,7 @@ def subdivide(mesh, cuts):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--addon-zip", required=True)
-    parser.add_argument("--blend", required=True)
-    parser.add_argument("--object", default="BakeMesh")
-    parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
+    parser = variants.level_arguments()
     parser.add_argument("--cuts", type=int, default=17)
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
@@ -57,7 +52,7 @@ def main():
     obj.data.calc_loop_triangles()
     triangles = len(obj.data.loop_triangles)
     cached = np.load(args.truth)
-    lamps = np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
+    lamps = variants.lamp_positions()
     wall = time.time()
     with harness.Stopwatch() as seconds:
         summary = addon.bake(bpy.context.scene, quality="MEDIUM")

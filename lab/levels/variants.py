@@ -56,12 +56,23 @@ def report(name, baked, truth_runs, positions, lamps, cpu):
               % (low, high, band.sum(), baked[band].sum() / truth[band].sum(), error), flush=True)
 
 
-def main():
+def level_arguments():
+    """The arguments every level script takes: the add-on, the level, its mesh and its truth."""
     parser = argparse.ArgumentParser()
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--blend", required=True)
     parser.add_argument("--object", default="BakeMesh")
     parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
+    return parser
+
+
+def lamp_positions():
+    """Where the open file's lamps are, (lamps, 3)."""
+    return np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
+
+
+def main():
+    parser = level_arguments()
     parser.add_argument("--variants", default="-")
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
@@ -69,7 +80,7 @@ def main():
     obj = bpy.data.objects[args.object]
     cached = np.load(args.truth)
     positions = cached["positions"].reshape(-1, 3)
-    lamps = np.array([o.matrix_world.translation[:] for o in bpy.data.objects if o.type == "LIGHT"])
+    lamps = lamp_positions()
     auto_settings = sys.modules[harness.MODULE + ".engine.auto_settings"]
     for variant in args.variants.split(","):
         presets = dict(auto_settings.PRESETS)
@@ -87,5 +98,5 @@ def main():
                cached["runs"], positions, lamps, seconds.cpu)
 
 
-if __name__ == "__main__":  # lab/levels/core_variants.py imports report and luminance_per_vertex
+if __name__ == "__main__":  # lab/levels/core_variants.py and subdivided.py import its pieces
     main()
