@@ -26,7 +26,7 @@ constexpr float kShapedRadius = 0.25f;      // a lamp of this many zone edges is
 constexpr std::size_t kDirections = 32768;  // directions out of a lamp with near zones
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-/// What every zone pass reads.
+/// What every pass reads: the elements (and their occluders), the zones and the media's walk.
 struct ZoneScene {
     const Elements& elements;
     const Zones& zones;
@@ -171,18 +171,41 @@ void sun_on_zones(const ZoneScene& scene, const SunLight& sun, std::vector<Rgb>&
 /// One lamp's light on the elements times the transmittance from each element's centre to it
 /// (`towards` gives the unit direction and distance from a point to the lamp).
 template <typename Towards>
-void one_lamp_on_elements(const Elements& elements, const Lights& one, const MediumTracer& tracer, Towards towards,
-                          std::vector<Rgb>& irradiance, const ProgressFn& progress) {
-    const std::vector<Rgb> unattenuated = direct_irradiance(elements, one, progress);
+void one_lamp_on_elements(const ZoneScene& scene, const Lights& one, Towards towards, std::vector<Rgb>& irradiance,
+                          const ProgressFn& progress) {
+    const Elements& elements = scene.elements;
+    const std::vector<Rgb> unattenuated = direct_irradiance(elements, one, *scene.visibility, progress);
     tbb::enumerable_thread_specific<std::vector<ZoneCredit>> credits;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements.size(), 64), [&](const auto& range) {
         for (std::size_t e = range.begin(); e != range.end(); ++e) {
             if (!(max_channel(unattenuated[e]) > 0.0)) continue;
             float distance = kInfinity;
             const Vec3 d = towards(elements.centre[e], distance);
-            irradiance[e] += unattenuated[e] * Rgb(tracer.trace(elements.centre[e], d, distance, credits.local()));
+            irradiance[e] +=
+                unattenuated[e] * Rgb(scene.tracer.trace(elements.centre[e], d, distance, credits.local()));
         }
     });
+}
+
+/// Every lamp's light on the elements, each dimmed by the media to it.
+void light_elements(const ZoneScene& scene, const Lights& lights, std::vector<Rgb>& irradiance,
+                    const ProgressFn& progress) {
+    for (const PointLight& lamp : lights.points) {
+        Lights one;
+        one.points.push_back(lamp);
+        const auto towards = [&](const Vec3& x, float& distance) {
+            distance = glm::length(lamp.position - x);
+            return distance > 0.0f ? (lamp.position - x) / distance : Vec3(0.0f, 0.0f, 1.0f);
+        };
+        one_lamp_on_elements(scene, one, towards, irradiance, progress);
+    }
+    for (const SunLight& sun : lights.suns) {
+        Lights one;
+        one.suns.push_back(sun);
+        one.resolution = lights.resolution;
+        one_lamp_on_elements(
+            scene, one, [&](const Vec3&, float&) { return -sun.direction; }, irradiance, progress);
+    }
 }
 
 }  // namespace
@@ -193,30 +216,12 @@ LampsThroughMedia lamps_through_media(const Elements& elements, const Lights& li
     out.element_irradiance.assign(elements.size(), Rgb(0.0));
     out.zone_incident.assign(zones.size(), Rgb(0.0));
     if (lights.empty()) return out;
-    for (const PointLight& lamp : lights.points) {
-        Lights one;
-        one.points.push_back(lamp);
-        one_lamp_on_elements(
-            elements, one, tracer,
-            [&](const Vec3& x, float& distance) {
-                distance = glm::length(lamp.position - x);
-                return distance > 0.0f ? (lamp.position - x) / distance : Vec3(0.0f, 0.0f, 1.0f);
-            },
-            out.element_irradiance, progress);
-    }
-    for (const SunLight& sun : lights.suns) {
-        Lights one;
-        one.suns.push_back(sun);
-        one.resolution = lights.resolution;
-        one_lamp_on_elements(
-            elements, one, tracer, [&](const Vec3&, float&) { return -sun.direction; }, out.element_irradiance,
-            progress);
-    }
-    if (zones.size() == 0) return out;
-    std::optional<hr::Visibility> occluders;
+    std::optional<hr::Visibility> occluders;  // one for the elements' light and the zones'
     if (elements.size() > 0)
         occluders.emplace(elements.vertices, detail::blocking_corners(elements), scene_diagonal(elements.vertices));
     const ZoneScene scene{elements, zones, tracer, occluders ? &*occluders : nullptr};
+    if (occluders) light_elements(scene, lights, out.element_irradiance, progress);
+    if (zones.size() == 0) return out;
     for (const PointLight& lamp : lights.points) point_lamp_on_zones(scene, lamp, out.zone_incident, progress);
     for (const SunLight& sun : lights.suns) sun_on_zones(scene, sun, out.zone_incident, progress);
     return out;

@@ -51,22 +51,41 @@ Rgb element_irradiance(const Elements& elements, std::size_t e, const std::vecto
 
 }  // namespace
 
-std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress) {
-    std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
-    if (elements.size() == 0) return irradiance;
-    if (!lights.points.empty()) {
-        const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements),
-                                        scene_diagonal(elements.vertices));
-        detail::parallel_rows("lights", elements.size(), 16, elements.size(), progress, [&](std::size_t e) {
-            irradiance[e] = element_irradiance(elements, e, lights.points, visibility);
-            return true;
-        });
-    }
+namespace {
+
+/// The suns' light, added to `irradiance` (sun_raster.h).
+void add_suns(const Elements& elements, const Lights& lights, std::vector<Rgb>& irradiance,
+              const ProgressFn& progress) {
     std::size_t done = 0;
     for (const SunLight& sun : lights.suns) {
         add_sun_light(elements, sun, lights.resolution, irradiance);
         detail::report_progress(progress, "lights", ++done, lights.suns.size());
     }
+}
+
+}  // namespace
+
+std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress) {
+    if (elements.size() == 0 || lights.points.empty()) {
+        std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
+        if (elements.size() > 0) add_suns(elements, lights, irradiance, progress);
+        return irradiance;
+    }
+    const hr::Visibility visibility(elements.vertices, detail::blocking_corners(elements),
+                                    scene_diagonal(elements.vertices));
+    return direct_irradiance(elements, lights, visibility, progress);
+}
+
+std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const hr::Visibility& visibility,
+                                   const ProgressFn& progress) {
+    std::vector<Rgb> irradiance(elements.size(), Rgb(0.0));
+    if (elements.size() == 0) return irradiance;
+    if (!lights.points.empty())
+        detail::parallel_rows("lights", elements.size(), 16, elements.size(), progress, [&](std::size_t e) {
+            irradiance[e] = element_irradiance(elements, e, lights.points, visibility);
+            return true;
+        });
+    add_suns(elements, lights, irradiance, progress);
     return irradiance;
 }
 

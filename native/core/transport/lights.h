@@ -32,6 +32,11 @@ struct Lights {
 /// per element and per sun; throws Cancelled.
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const ProgressFn& progress = {});
 
+/// The same with the elements' occluders given (a hr::Visibility of `elements` as direct_irradiance
+/// makes it: detail::blocking_corners, scene_diagonal), for a caller that lights them lamp by lamp.
+std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const hr::Visibility& visibility,
+                                   const ProgressFn& progress = {});
+
 /// Irradiance at points on surfaces (each facing its unit normal) from every lamp, shadows
 /// against `surfaces` (both sides occlude) included, as detail::lamp_irradiance gives it. What the
 /// hierarchical bake shows at its output corners; the accuracy charts' truth.
