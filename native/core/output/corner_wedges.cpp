@@ -63,11 +63,12 @@ void CornerWedges::fill_table(const Elements& elements, std::size_t slot, const 
     fill(e, k, points.data(), &values_[std::size_t(table_of_slot_[slot])]);
 }
 
-Rgb CornerWedges::correction(const Elements& elements, std::size_t element, float u, float v) const {
+template <typename Visit>
+void CornerWedges::visit_terms(const Elements& elements, std::size_t element, float u, float v,
+                               const Visit& visit) const {
     const bool triangle = elements.is_triangle(element);
     const double uu = std::clamp(double(u), 0.0, 1.0), vv = std::clamp(double(v), 0.0, 1.0);
     const std::array<double, 4> weight = corner_weights(elements, element, u, v);
-    Rgb sum(0.0);
     for (int k = 0; k < elements.corner_count(element); ++k) {
         const int32_t first = table_of_slot_[4 * element + std::size_t(k)];
         if (first < 0) continue;
@@ -78,11 +79,24 @@ Rgb CornerWedges::correction(const Elements& elements, std::size_t element, floa
         const int low = std::clamp(int(std::floor(position)), 0, kBins - 1);
         const int high = std::min(low + 1, kBins - 1);
         const double t = std::clamp(position - low, 0.0, 1.0);
-        const Rgb* table = &values_[std::size_t(first)];
-        const Rgb there = (1.0 - t) * table[low] + t * table[high];
-        sum += weight[std::size_t(k)] * there;
+        visit(first + low, weight[std::size_t(k)] * (1.0 - t), first + high, weight[std::size_t(k)] * t);
     }
+}
+
+Rgb CornerWedges::correction(const Elements& elements, std::size_t element, float u, float v) const {
+    Rgb sum(0.0);
+    visit_terms(elements, element, u, v, [&](int32_t low, double low_weight, int32_t high, double high_weight) {
+        sum += low_weight * values_[std::size_t(low)] + high_weight * values_[std::size_t(high)];
+    });
     return elements.reflectance[element] * sum;
+}
+
+void CornerWedges::terms(const Elements& elements, std::size_t element, float u, float v,
+                         std::vector<std::pair<int32_t, double>>& terms) const {
+    visit_terms(elements, element, u, v, [&](int32_t low, double low_weight, int32_t high, double high_weight) {
+        terms.emplace_back(low, low_weight);
+        terms.emplace_back(high, high_weight);
+    });
 }
 
 }  // namespace radiosity::detail

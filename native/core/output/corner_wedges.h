@@ -15,7 +15,9 @@
 
 #include "geometry/scene.h"
 
+#include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace radiosity::detail {
@@ -41,14 +43,30 @@ public:
     /// ray tracer's parameters, as radiance_near blends the corners): reflectance x the sum over its
     /// corners with a table of weight x the table at the point's direction.
     Rgb correction(const Elements& elements, std::size_t element, float u, float v) const;
+    /// The same read as weights: appends each table value correction() reads (entry()) with its
+    /// weight, before the reflectance, to `terms`.
+    void terms(const Elements& elements, std::size_t element, float u, float v,
+               std::vector<std::pair<int32_t, double>>& terms) const;
+    /// A table value, by the index terms() gives, times the reflectance of its table's element.
+    Rgb reflected_entry(const Elements& elements, std::size_t index) const {
+        return elements.reflectance[std::size_t(element_of_table_[index / kBins])] * values_[index];
+    }
+    /// Table values in all.
+    std::size_t entries() const { return values_.size(); }
 
 private:
     /// The point a hair from corner k of element e, at parametric angle s in [0, 1] across its corner.
     Vec3 point_at(const Elements& elements, std::size_t e, int k, double s) const;
     void fill_table(const Elements& elements, std::size_t slot, const FillTable& fill);
+    /// Calls visit(low, low weight, high, high weight) for each corner of `element` with a table:
+    /// the two bins around the point's direction from the corner and their weights (the corner's
+    /// blend weight at (u, v), split linearly between the bins' centres).
+    template <typename Visit>
+    void visit_terms(const Elements& elements, std::size_t element, float u, float v, const Visit& visit) const;
 
     std::vector<int32_t> table_of_slot_;  ///< slot 4 e + k -> its first value, or -1
     std::vector<Rgb> values_;             ///< kBins values per table, at parametric angles (i + 0.5) / kBins
+    std::vector<int32_t> element_of_table_;
     float scene_size_ = 0.0f;
 };
 
@@ -66,6 +84,7 @@ CornerWedges::CornerWedges(const Elements& elements, const std::vector<uint8_t>&
             }
     }
     values_.resize(slots.size() * kBins);
+    for (const std::size_t slot : slots) element_of_table_.push_back(int32_t(slot / 4));
     parallel(slots.size(), [&](std::size_t t) { fill_table(elements, slots[t], fill); });
 }
 

@@ -14,6 +14,7 @@
 #include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
 #include "output/kept_direct_light.h"
+#include "output/point_reads.h"
 #include "transport/lamp_points.h"
 #include "transport/world_light.h"
 #include "visibility/ray_tracer.h"
@@ -92,15 +93,22 @@ struct GatherScene {
     GatherKept kept;
 };
 
+/// How a Gatherer reads its indirect rays: hit by hit (the field's and the wedge tables' few rays,
+/// which land on nearly as many values as there are rays), or folded into the values they read
+/// (the output's many rays, which land on far fewer values: docs/benchmarks.md), which a re-bake or
+/// a light group's layer then reads in a fraction of the time.
+enum class RayKeeping { HitByHit, Folded };
+
 /// The gather at one point: its element, where it starts and what it found.
 class Gatherer {
 public:
     Gatherer(const GatherScene& scene, const std::vector<Rgb>& corner_field, const FinalGatherSettings& settings,
-             const CornerWedges* wedges = nullptr)
+             const CornerWedges* wedges = nullptr, RayKeeping keeping = RayKeeping::HitByHit)
         : scene_(scene),
           elements_(scene.elements),
           corner_field_(corner_field),
           wedges_(wedges),
+          keeping_(keeping),
           grid_(std::max(1, int(std::ceil(std::sqrt(double(std::max(1, settings.rays)) - 1e-9))))),
           shadow_rays_(std::max(1, settings.shadow_rays)) {}
 
@@ -288,54 +296,114 @@ public:
 private:
     /// Mean of (radiance - own emission) over the first hits of cosine-weighted rays; false when
     /// more than half of them hit a back face nearer than `near` (buried: then `out` is left as it
-    /// was unless `even_buried`). `seam_share`: the share of rays
-    /// that met another surface right at the point (closer than kSeam of the element hit). With
-    /// `outputs.reads`, what those rays read of the field goes there as weights, the rest as its
-    /// indirect; with `outputs.gradients`, the indirect light's gradients from the same rays.
+    /// was unless `even_buried`). The radiance where a ray hit is radiance_near plus the light
+    /// around its corners on seams (wedge_light); both are linear in the values they read.
+    /// `seam_share`: the share of rays that met another surface right at the point (closer than
+    /// kSeam of the element hit). With `outputs.reads` (the output's gatherers alone), what those
+    /// rays read of the field goes there as weights, the rest as its indirect; with
+    /// `outputs.statistics` and `outputs.gradients`, the rays' sampling statistics and the indirect
+    /// light's gradients. The output's gatherers read their rays folded (point_reads.h), the others
+    /// hit by hit.
     bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
                          const PointOutputs& outputs, bool even_buried = false) const {
+        if (keeping_ == RayKeeping::Folded)
+            return gather_folded(origin, normal, seed, near, out, seam_share, outputs, even_buried);
+        return gather_hit_by_hit(origin, normal, seed, near, out, seam_share, outputs, even_buried);
+    }
+
+    /// gather_indirect from the rays' folded reads, kept by an earlier gather or traced and folded.
+    bool gather_folded(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
+                       const PointOutputs& outputs, bool even_buried) const {
+        PointReads own;
+        const PointReads& reads = point_reads(origin, normal, seed, outputs.gradients != nullptr, own);
+        const int rays = reads.rays;
+        const auto back_near = std::count_if(reads.back_distances.begin(), reads.back_distances.end(),
+                                             [&](float distance) { return distance < near; });
+        const bool buried = 2 * back_near > rays;
+        if (buried && !even_buried) return false;
+        PointStatistics* statistics = outputs.statistics;
+        const ReadSums sums = evaluate(reads, {elements_, corner_field_, scene_.radiance, scene_.emitted, wedges_,
+                                               statistics != nullptr ? statistics->probe : nullptr});
+        out = glm::max(sums.sum / double(rays), Rgb(0.0));
+        seam_share = float(reads.at_seam) / float(rays);
+        if (statistics != nullptr) spread_statistics(out, sums.difference, sums.probe, rays, *statistics);
+        if (outputs.gradients != nullptr) {
+            glm::dvec3 t, b;
+            tangent_frame(glm::dvec3(normal), t, b);
+            *outputs.gradients = sums.gradients.in_space(t, b);
+        }
+        if (outputs.reads != nullptr) {
+            outputs.reads->slots = reads.seam_slots;
+            outputs.reads->indirect = sums.rest / double(rays);
+        }
+        return !buried;
+    }
+
+    /// The folded reads of the rays from `origin` (with the gradients' weights if `gradients`): kept
+    /// by an earlier gather, else traced and folded into `own`, and kept if the budget allows.
+    const PointReads& point_reads(const Vec3& origin, const Vec3& normal, uint32_t seed, bool gradients,
+                                  PointReads& own) const {
+        const bool with_wedges = wedges_ != nullptr && !wedges_->empty();
+        const uint32_t read =
+            (with_wedges ? GatherHits::kWithWedges : 0U) | (gradients ? GatherHits::kWithGradients : 0U);
+        const GatherHits::Key key = GatherHits::key(origin, normal, seed, grid_, GatherHits::Kind::Indirect, read);
+        GatherHits* hits = scene_.kept.hits;
+        if (hits != nullptr)
+            if (const PointReads* kept = hits->find_reads(key)) return *kept;
+        own = fold_reads(elements_, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients},
+                         trace_rays(origin, normal, seed));
+        if (hits != nullptr)
+            if (const PointReads* kept = hits->record_reads(key, own)) return *kept;
+        return own;
+    }
+
+    /// The stratified cosine-weighted rays from `origin`, in order, and whether each met a front.
+    std::vector<RayHit> trace_rays(const Vec3& origin, const Vec3& normal, uint32_t seed) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
-        Rgb sum(0.0), rest(0.0);
-        std::vector<std::pair<int32_t, double>> slots;
+        std::vector<RayHit> hits(std::size_t(grid_) * std::size_t(grid_));
+        for (int i = 0; i < grid_ * grid_; ++i) hits[std::size_t(i)] = trace_ray(origin, n, t, b, i, seed);
+        return hits;
+    }
+
+    /// Ray `i` of the stratified cosine-weighted rays from `origin` (its jitter drawn from `seed`):
+    /// what it hit and whether it met a front.
+    RayHit trace_ray(const Vec3& origin, const glm::dvec3& n, const glm::dvec3& t, const glm::dvec3& b, int i,
+                     uint32_t& seed) const {
+        const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
+        const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
+        const Vec3 direction(cosine_direction(n, t, b, u, v));
+        const hr::Visibility::Hit traced =
+            facing(scene_.visibility.first_hit(origin, direction, 0.0f), origin, direction);
+        return {traced, traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f};
+    }
+
+    /// gather_indirect reading each ray's hit, recorded by an earlier gather or traced (without
+    /// `outputs.reads` and `outputs.gradients`: only the output's gatherers ask for those).
+    bool gather_hit_by_hit(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out,
+                           float& seam_share, const PointOutputs& outputs, bool even_buried) const {
+        glm::dvec3 t, b;
+        const glm::dvec3 n(normal);
+        tangent_frame(n, t, b);
+        Rgb sum(0.0);
         int back_near = 0, at_seam = 0;
-        SeamReads* reads = outputs.reads;
         RaySpread spread(elements_, outputs.statistics, grid_);
-        std::optional<GradientSamples> gradients;
-        if (outputs.gradients != nullptr) gradients.emplace(grid_, t, b);
         RecordedRays recorded(scene_.kept.hits, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
-        const GatherHits::Slots* known_slots =
-            reads != nullptr && scene_.kept.hits != nullptr ? scene_.kept.hits->find_slots(recorded.key()) : nullptr;
         const int rays = grid_ * grid_;
         for (int i = 0; i < rays; ++i) {
             bool meets_front = false;
             const hr::Visibility::Hit hit = recorded.hit(i, meets_front, [&] {
-                const double u = (double(i % grid_) + next_jitter(seed)) / grid_;
-                const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
-                const Vec3 direction(cosine_direction(n, t, b, u, v));
-                const hr::Visibility::Hit traced =
-                    facing(scene_.visibility.first_hit(origin, direction, 0.0f), origin, direction);
-                return std::make_pair(traced,
-                                      traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f);
+                const RayHit traced = trace_ray(origin, n, t, b, i, seed);
+                return std::make_pair(traced.hit, traced.front);
             });
             if (hit.patch < 0) continue;
             if (meets_front) {
-                const Rgb wedge = wedge_light(hit);
-                const Rgb seen = radiance_near(hit) + wedge - scene_.emitted[hit.patch];
+                const Rgb seen = radiance_near(hit) + wedge_light(hit) - scene_.emitted[hit.patch];
                 sum += seen;
                 spread.add(i, seen, hit);
-                if (gradients) gradients->add(i, seen, hit.distance);
-                const bool seam = hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
-                at_seam += seam;
-                if (reads != nullptr && seam && !elements_.is_back(std::size_t(hit.patch))) {
-                    rest += wedge - scene_.emitted[hit.patch];
-                    if (known_slots == nullptr) add_weights(hit, slots);
-                } else {
-                    rest += seen;
-                }
+                at_seam += hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
             } else {
-                if (gradients) gradients->add(i, Rgb(0.0), hit.distance);
                 back_near += hit.distance < near;
             }
         }
@@ -345,27 +413,7 @@ private:
         out = glm::max(sum / double(rays), Rgb(0.0));
         seam_share = float(at_seam) / float(rays);
         spread.finish(out, rays);
-        if (gradients) *outputs.gradients = gradients->finish();
-        if (reads != nullptr && known_slots != nullptr) {
-            reads->slots = *known_slots;
-        } else if (reads != nullptr) {
-            std::sort(slots.begin(), slots.end());
-            reads->slots.clear();
-            for (const auto& [slot, weight] : slots) {
-                if (reads->slots.empty() || reads->slots.back().first != slot) reads->slots.emplace_back(slot, 0.0);
-                reads->slots.back().second += weight / double(rays);
-            }
-            if (scene_.kept.hits != nullptr) scene_.kept.hits->record_slots(recorded.key(), reads->slots);
-        }
-        if (reads != nullptr) reads->indirect = rest / double(rays);
         return !buried;
-    }
-
-    /// The weights radiance_near gives the hit element's corner slots.
-    void add_weights(const hr::Visibility::Hit& hit, std::vector<std::pair<int32_t, double>>& slots) const {
-        const std::size_t h = std::size_t(hit.patch);
-        const std::array<double, 4> w = corner_weights(elements_, h, hit.u, hit.v);
-        for (int k = 0; k < elements_.corner_count(h); ++k) slots.emplace_back(int32_t(4 * h) + k, w[std::size_t(k)]);
     }
 
     /// `hit`, or where it is on an emitting polygon's element seen from behind, the back side
@@ -520,6 +568,7 @@ private:
     const Elements& elements_;
     const std::vector<Rgb>& corner_field_;
     const CornerWedges* wedges_;
+    RayKeeping keeping_;
     int grid_, shadow_rays_;
 };
 
@@ -1062,8 +1111,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     const int passes = 2;
     for (int pass = 0; pass < passes && !todo.empty(); ++pass) {
         const bool last = pass + 1 == passes;
-        const Gatherer gatherer(scene, field, settings, &wedges);
-        const Gatherer seam_gatherer(scene, field, seam_settings, &wedges);
+        const Gatherer gatherer(scene, field, settings, &wedges, RayKeeping::Folded);
+        const Gatherer seam_gatherer(scene, field, seam_settings, &wedges, RayKeeping::Folded);
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
@@ -1104,8 +1153,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
     read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
     meter.add_to(cost.seams);
-    bake_buried_corners_as_cycles(Gatherer(scene, field, settings, &wedges), gathered, moved, approach, place, progress,
-                                  p);
+    bake_buried_corners_as_cycles(Gatherer(scene, field, settings, &wedges, RayKeeping::Folded), gathered, moved,
+                                  approach, place, progress, p);
     meter.add_to(cost.points);
 
     // Every slot on a gathered output vertex takes its value (where a smooth surface bends, the

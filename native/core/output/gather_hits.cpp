@@ -12,10 +12,12 @@ constexpr std::size_t kSetOverhead = sizeof(GatherHits::Key) + sizeof(std::vecto
 
 }  // namespace
 
-GatherHits::Key GatherHits::key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind) {
+GatherHits::Key GatherHits::key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind,
+                                uint32_t read) {
     using detail::float_bits;
     return Key{{float_bits(origin.x), float_bits(origin.y), float_bits(origin.z), float_bits(normal.x),
-                float_bits(normal.y), float_bits(normal.z), seed, (uint32_t(grid) << 1) | uint32_t(kind)}};
+                float_bits(normal.y), float_bits(normal.z), seed,
+                (uint32_t(grid) << 4) | (read << 2) | uint32_t(kind)}};
 }
 
 std::size_t GatherHits::KeyHash::operator()(const Key& key) const { return detail::WordsHash()(key.words); }
@@ -49,19 +51,21 @@ void GatherHits::record(const Key& key, std::vector<hr::Visibility::Hit>&& hits)
     if (!s.map.emplace(key, std::move(hits)).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
 }
 
-const GatherHits::Slots* GatherHits::find_slots(const Key& key) const {
+const detail::PointReads* GatherHits::find_reads(const Key& key) const {
     Shard& s = shard(key);
     const std::lock_guard<std::mutex> lock(s.mutex);
-    const auto found = s.slots.find(key);
-    return found == s.slots.end() ? nullptr : &found->second;
+    const auto found = s.reads.find(key);
+    return found == s.reads.end() ? nullptr : &found->second;
 }
 
-void GatherHits::record_slots(const Key& key, const Slots& slots) {
-    const std::size_t size = slots.size() * sizeof(Slots::value_type) + kSetOverhead;
-    if (!reserve(size)) return;
+const detail::PointReads* GatherHits::record_reads(const Key& key, detail::PointReads& reads) {
+    const std::size_t size = reads.bytes() + kSetOverhead;
+    if (!reserve(size)) return nullptr;
     Shard& s = shard(key);
     const std::lock_guard<std::mutex> lock(s.mutex);
-    if (!s.slots.emplace(key, slots).second) bytes_.fetch_sub(size, std::memory_order_relaxed);
+    const auto [kept, added] = s.reads.try_emplace(key, std::move(reads));
+    if (!added) bytes_.fetch_sub(size, std::memory_order_relaxed);
+    return &kept->second;
 }
 
 }  // namespace radiosity

@@ -10,9 +10,12 @@
 /// solved radiance there less its emission) depends on them; Christensen's photon-map final gather
 /// and the irradiance cache of Ward et al. rely on the same split. Recorded hits are exactly what
 /// Embree returns for those rays, so a gather that reads them gives bit for bit the colours a gather
-/// that traces them gives. Shadow rays are kept as each source's light (kept_direct_light.h).
+/// that traces them gives. The output points' indirect rays, many more than the values they read,
+/// are kept folded into what they read instead (point_reads.h), which every gather at those points
+/// evaluates, traced or not. Shadow rays are kept as each source's light (kept_direct_light.h).
 #pragma once
 
+#include "output/point_reads.h"
 #include "visibility/ray_tracer.h"
 
 #include <array>
@@ -33,13 +36,15 @@ public:
     /// Which rays: the gather's indirect rays (after a front seen from behind became its back side)
     /// or the probe rays that decide which points gather (fronts alone).
     enum class Kind : uint32_t { Indirect = 0, Probe = 1 };
+    /// How a folded set is read (bits): with the wedge tables, with the gradients.
+    static constexpr uint32_t kWithWedges = 1, kWithGradients = 2;
 
-    /// A ray set: its origin and normal (bits), seed, grid and kind.
+    /// A ray set: its origin and normal (bits), seed, grid, kind and how it is read.
     struct Key {
         std::array<uint32_t, 8> words{};
         bool operator==(const Key& other) const { return words == other.words; }
     };
-    static Key key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind);
+    static Key key(const Vec3& origin, const Vec3& normal, uint32_t seed, int grid, Kind kind, uint32_t read = 0);
 
     explicit GatherHits(std::size_t budget_bytes = 0) : budget_bytes_(budget_bytes) {}
     GatherHits(const GatherHits&) = delete;
@@ -50,11 +55,11 @@ public:
     /// Keeps `hits` as the hits of `key`, unless that would pass the budget (then `full` turns true).
     void record(const Key& key, std::vector<hr::Visibility::Hit>&& hits);
 
-    /// The field slots a ray set's rays met right at a seam read, each once with its summed weight
-    /// (final_gather.cpp's SeamReads), as the hits give them: kept beside the hits, within the budget.
-    using Slots = std::vector<std::pair<int32_t, double>>;
-    const Slots* find_slots(const Key& key) const;
-    void record_slots(const Key& key, const Slots& slots);
+    /// The folded reads of an indirect ray set (point_reads.h), or null. Valid while this object lives.
+    const detail::PointReads* find_reads(const Key& key) const;
+    /// Keeps `reads` (moved from) as the reads of `key` and returns them as kept; null when that would
+    /// pass the budget (then `full` turns true and `reads` is left as it was).
+    const detail::PointReads* record_reads(const Key& key, detail::PointReads& reads);
 
     std::size_t bytes() const { return bytes_.load(std::memory_order_relaxed); }
     /// Whether some ray set was left unrecorded for the budget.
@@ -71,7 +76,7 @@ private:
     struct Shard {
         mutable std::mutex mutex;
         Map map;
-        std::unordered_map<Key, Slots, KeyHash> slots;
+        std::unordered_map<Key, detail::PointReads, KeyHash> reads;
     };
     Shard& shard(const Key& key) const;
     /// Counts `size` more bytes unless that would pass the budget (then false, and `full`).

@@ -12,18 +12,23 @@ namespace radiosity::detail {
 
 void RaySpread::add(int ray, const Rgb& sample, const hr::Visibility::Hit& hit) {
     if (statistics_ == nullptr) return;
-    difference_ += ((ray % grid_) + (ray / grid_)) % 2 == 0 ? sample : -sample;
+    difference_ += half_sign(ray, grid_) * sample;
     const std::size_t h = std::size_t(hit.patch);
     if (statistics_->probe == nullptr || elements_.is_back(h)) return;  // a back side reads its solved value
     probe_ += blend_corners(elements_, h, &(*statistics_->probe)[4 * h], hit.u, hit.v);
 }
 
 void RaySpread::finish(const Rgb& indirect, int rays) const {
-    if (statistics_ == nullptr || rays <= 0) return;
-    statistics_->indirect = indirect;
+    if (statistics_ != nullptr) spread_statistics(indirect, difference_, probe_, rays, *statistics_);
+}
+
+void spread_statistics(const Rgb& indirect, const Rgb& difference, const Rgb& probe, int rays,
+                       PointStatistics& statistics) {
+    if (rays <= 0) return;
+    statistics.indirect = indirect;
     // mean_a - mean_b = 2 difference / rays, a quarter of its square.
-    statistics_->variance = difference_ * difference_ / (double(rays) * double(rays));
-    statistics_->probe_read = probe_ / double(rays);
+    statistics.variance = difference * difference / (double(rays) * double(rays));
+    statistics.probe_read = probe / double(rays);
 }
 
 std::vector<Rgb> noise_probe(const Elements& elements, const std::vector<PointStatistics>& field_point,

@@ -44,6 +44,14 @@ struct PointStatistics {
     Rgb indirect{0.0}, variance{0.0}, probe_read{0.0};
 };
 
+/// Which half ray `ray` of a gather of `grid` x `grid` rays is in (RaySpread): +1 or -1, a checkerboard.
+inline double half_sign(int ray, int grid) { return ((ray % grid) + (ray / grid)) % 2 == 0 ? 1.0 : -1.0; }
+
+/// A point's statistics from its indirect light, the difference of its rays' halves' sums, the sum
+/// of the probe field they read and their count (RaySpread::finish).
+void spread_statistics(const Rgb& indirect, const Rgb& difference, const Rgb& probe, int rays,
+                       PointStatistics& statistics);
+
 /// The sampling variance of a stratified mean from its own samples, by two interpenetrating
 /// half-samples (Mahalanobis 1946; the random group method, Wolter, Introduction to Variance
 /// Estimation, 2007, ch. 2): the strata of the gather's grid split as a checkerboard, each half a

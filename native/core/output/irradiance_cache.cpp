@@ -13,20 +13,8 @@
 
 namespace radiosity::detail {
 
-GradientSamples::GradientSamples(int grid, const glm::dvec3& t, const glm::dvec3& b)
-    : grid_(grid),
-      t_(t),
-      b_(b),
-      sample_(std::size_t(grid) * std::size_t(grid), Rgb(0.0)),
-      distance_(std::size_t(grid) * std::size_t(grid), 0.0) {}
-
-void GradientSamples::add(int ray, const Rgb& sample, double distance) {
-    sample_[std::size_t(ray)] = sample;
-    distance_[std::size_t(ray)] = distance > 0.0 ? 1.0 / distance : 0.0;  // kept as 1 / distance
-}
-
-LightGradients GradientSamples::finish() const {
-    const int m = grid_, n = grid_;
+GradientWeights gradient_weights(int grid, const std::vector<double>& inverse_distance) {
+    const int m = grid, n = grid;
     const double pi = M_PI;
     // Per polar stratum j (the same at every azimuth): the factors its samples' terms take.
     struct Stratum {
@@ -42,35 +30,38 @@ LightGradients GradientSamples::finish() const {
         strata[std::size_t(j)] = {sin_j / cos_j, (2.0 * pi / n) * sin_low * cos2_low,
                                   cos_j * (cos_low - cos_high) / sin_j};
     }
-    glm::dvec3 rotation[3] = {}, translation[3] = {};
+    const std::size_t rays = std::size_t(m) * std::size_t(n);
+    GradientWeights w{std::vector<glm::dvec2>(rays, glm::dvec2(0.0)), std::vector<glm::dvec2>(rays, glm::dvec2(0.0))};
     auto at = [&](int j, int k) { return std::size_t(k) * std::size_t(m) + std::size_t(j); };
-    auto in_plane = [&](double phi) { return std::cos(phi) * t_ + std::sin(phi) * b_; };
-    auto add = [](glm::dvec3* out, const glm::dvec3& direction, const Rgb& amount) {
-        for (int c = 0; c < 3; ++c) out[c] += amount[c] * direction;
+    auto in_plane = [](double phi) { return glm::dvec2(std::cos(phi), std::sin(phi)); };
+    // A difference of two samples across a boundary, by the nearer of the two hits: + to one, - to the other.
+    auto across = [&](std::size_t here, std::size_t there, double factor, const glm::dvec2& direction) {
+        const glm::dvec2 weight = factor * std::max(inverse_distance[here], inverse_distance[there]) / pi * direction;
+        w.translation[here] += weight;
+        w.translation[there] -= weight;
     };
     for (int k = 0; k < n; ++k) {
         const double phi = 2.0 * pi * (k + 0.5) / n, phi_low = 2.0 * pi * k / n;
-        const glm::dvec3 u = in_plane(phi), v = in_plane(phi + 0.5 * pi), v_low = in_plane(phi_low + 0.5 * pi);
+        const glm::dvec2 u = in_plane(phi), v = in_plane(phi + 0.5 * pi), v_low = in_plane(phi_low + 0.5 * pi);
         const int previous = (k + n - 1) % n;
         for (int j = 0; j < m; ++j) {
             const Stratum& s = strata[std::size_t(j)];
-            const Rgb& L = sample_[at(j, k)];
-            // Rotation: each sample's cosine turns by (n x omega) / cos theta = tan theta v_k.
-            add(rotation, v, s.rotation * L);
+            // Rotation: each sample's cosine turns by (n x omega) / cos theta = tan theta v_k; the mean's: / (m n).
+            w.rotation[at(j, k)] += s.rotation / double(m * n) * v;
             // Translation across the stratum's boundary towards the pole (theta_{j-}), then across
             // the one at phi_k (Ward & Heckbert 1992), each by the nearer of the two hits.
-            if (j > 0) {
-                const double inverse = std::max(distance_[at(j, k)], distance_[at(j - 1, k)]);
-                add(translation, u, s.towards_pole * inverse * (L - sample_[at(j - 1, k)]));
-            }
-            const double inverse = std::max(distance_[at(j, k)], distance_[at(j, previous)]);
-            add(translation, v_low, s.across_phi * inverse * (L - sample_[at(j, previous)]));
+            if (j > 0) across(at(j, k), at(j - 1, k), s.towards_pole, u);
+            across(at(j, k), at(j, previous), s.across_phi, v_low);
         }
     }
+    return w;
+}
+
+LightGradients PlaneGradients::in_space(const glm::dvec3& t, const glm::dvec3& b) const {
     LightGradients out;
     for (std::size_t c = 0; c < 3; ++c) {
-        out.rotation[c] = rotation[c] / double(m * n);  // the mean's: E / pi
-        out.translation[c] = translation[c] / pi;
+        out.rotation[c] = rotation[c].x * t + rotation[c].y * b;
+        out.translation[c] = translation[c].x * t + translation[c].y * b;
     }
     return out;
 }

@@ -23,6 +23,7 @@
 #include "common/types.h"
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -44,24 +45,24 @@ struct LightGradients {
     }
 };
 
-/// The samples of one stratified cosine-weighted gather (grid x grid rays, ray i in the stratum
-/// sin^2 theta in [j, j + 1) / grid, phi in 2 pi [k, k + 1) / grid for j = i % grid, k = i / grid, as
-/// the final gather casts them), turned into the gradients of their mean (Ward & Heckbert 1992, eqs.
-/// for the rotational gradient and the translational gradient from the strata's boundaries).
-class GradientSamples {
-public:
-    /// `t`, `b`: the tangent frame the rays' azimuth is measured in (phi = 0 along t, pi / 2 along b).
-    GradientSamples(int grid, const glm::dvec3& t, const glm::dvec3& b);
-    /// Ray `ray` read `sample` at `distance` (rays never added missed: nothing, infinitely far).
-    void add(int ray, const Rgb& sample, double distance);
-    /// The gradients of the mean of the samples (the indirect light, irradiance / pi).
-    LightGradients finish() const;
+/// The gradients of the mean of one stratified cosine-weighted gather's samples (grid x grid rays,
+/// ray i in the stratum sin^2 theta in [j, j + 1) / grid, phi in 2 pi [k, k + 1) / grid for
+/// j = i % grid, k = i / grid, as the final gather casts them; Ward & Heckbert 1992, eqs. for the
+/// rotational gradient and the translational gradient from the strata's boundaries) as weights on
+/// the samples, which they are linear in: gradient[c] = sum over rays i of sample_i[c] x weight_i.
+/// Every weight lies in the tangent plane, so it is kept in the frame the rays' azimuth is measured
+/// in (x along t, where phi = 0; y along b, where phi = pi / 2).
+struct GradientWeights {
+    std::vector<glm::dvec2> rotation, translation;  ///< per ray
+};
+/// `inverse_distance`: per ray, 1 / the distance to what it hit (0: it missed, infinitely far).
+GradientWeights gradient_weights(int grid, const std::vector<double>& inverse_distance);
 
-private:
-    int grid_;
-    glm::dvec3 t_, b_;
-    std::vector<Rgb> sample_;
-    std::vector<double> distance_;
+/// Gradients summed in the tangent frame of GradientWeights, per channel.
+struct PlaneGradients {
+    std::array<glm::dvec2, 3> rotation{}, translation{};
+    /// The same in space, for the frame (t, b).
+    LightGradients in_space(const glm::dvec3& t, const glm::dvec3& b) const;
 };
 
 /// An output point as the cache sees it before anything is gathered.

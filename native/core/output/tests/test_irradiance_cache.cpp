@@ -31,7 +31,7 @@ double exact(const glm::dvec3& x, const glm::dvec3& n) {
 LightGradients gathered(const glm::dvec3& x, const glm::dvec3& n, int grid, uint32_t seed, double& mean) {
     glm::dvec3 t, b;
     tangent_frame(n, t, b);
-    GradientSamples samples(grid, t, b);
+    std::vector<double> sample(std::size_t(grid * grid), 0.0), inverse_distance(sample.size(), 0.0);
     mean = 0.0;
     for (int i = 0; i < grid * grid; ++i) {
         const double u = (double(i % grid) + next_jitter(seed)) / grid;
@@ -41,11 +41,19 @@ LightGradients gathered(const glm::dvec3& x, const glm::dvec3& n, int grid, uint
         const double distance = (1.0 - x.x) / d.x;
         const glm::dvec3 hit = x + distance * d;
         if (hit.y < -0.5 || hit.y > 0.8 || hit.z < 0.1 || hit.z > 1.0) continue;
-        samples.add(i, Rgb(1.0), distance);
+        sample[std::size_t(i)] = 1.0;
+        inverse_distance[std::size_t(i)] = 1.0 / distance;
         mean += 1.0;
     }
     mean /= grid * grid;
-    return samples.finish();
+    const GradientWeights weights = gradient_weights(grid, inverse_distance);
+    PlaneGradients sum;
+    for (std::size_t i = 0; i < sample.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) {
+            sum.rotation[c] += sample[i] * weights.rotation[i];
+            sum.translation[c] += sample[i] * weights.translation[i];
+        }
+    return sum.in_space(t, b);
 }
 
 TEST(IrradianceCache, GradientsMatchTheExactDerivativesOfARectanglesLight) {

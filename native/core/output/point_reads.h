@@ -1,0 +1,104 @@
+/// @file point_reads.h
+/// @brief What one gathered point's indirect rays read, folded into weights on the values they read:
+/// the gather at a point as a linear map, built once from the rays' hits and evaluated for each
+/// lighting (internal; final_gather.h).
+///
+/// A point's indirect light is the mean over its rays of what each hit reads: the field blended at
+/// the hit (its element's corner slots), the light around the element's corners on seams (the wedge
+/// tables, times the element's reflectance), its emission taken away, or on an emitter's back side
+/// its solved value. Each read is linear in those values with weights that the geometry alone
+/// sets, and so are the other things the gather takes from the same rays: the halves' difference
+/// and the probe field's read (gather_statistics.h), the irradiance gradients (irradiance_cache.h),
+/// and the share of the light read right at seams (final_gather.cpp's SeamReads). Precomputed light
+/// transport as a linear operator (Sloan, Kautz and Snyder 2002; per-light layers, UberBake,
+/// Rodriguez et al. 2020): the rays' hits are summed into one weight per value read, far fewer than
+/// rays where many rays land on one element (docs/benchmarks.md), and a re-bake or a light group's
+/// layer evaluates the sum instead of reading every hit.
+#pragma once
+
+#include "output/corner_wedges.h"
+#include "output/gather_statistics.h"
+#include "output/irradiance_cache.h"
+#include "visibility/ray_tracer.h"
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace radiosity::detail {
+
+/// One point's reads: a term per value read with its weights, and what the rays found besides.
+struct PointReads {
+    /// What a term reads.
+    enum class Source : uint32_t {
+        FieldSlot = 0,     ///< the field at slot 4 e + k (the element's corner colours)
+        BackRadiance = 1,  ///< an emitter's back side's solved radiance, per element
+        Wedge = 2,         ///< a wedge table's value (CornerWedges::reflected_entry)
+        Emitted = 3,       ///< an element's own emission (taken away: weight -1 a ray)
+    };
+    /// A value read and its weights, summed over the rays in double precision and kept in single
+    /// (12 bytes a term: a point's 2,304 rays' hits took 16 bytes a ray).
+    struct Term {
+        uint32_t read = 0;        ///< the source in the top two bits, the slot, element or table value below
+        float sum = 0.0f;         ///< weight in the rays' sum
+        float difference = 0.0f;  ///< weight in the halves' difference (half_sign)
+
+        static constexpr uint32_t kIndexBits = 30;
+        Source source() const { return Source(read >> kIndexBits); }
+        std::size_t index() const { return read & ((1U << kIndexBits) - 1U); }
+    };
+    /// A term's weights in the gradients (gradient_weights), in single precision: the gradients only
+    /// carry a record's light to the points read from it.
+    struct GradientTerm {
+        glm::vec2 rotation{0.0f}, translation{0.0f};  ///< in the rays' tangent frame (GradientWeights)
+    };
+    std::vector<Term> terms;
+    std::vector<GradientTerm> gradients;  ///< per term (empty: folded without the gradients)
+    std::vector<float> back_distances;    ///< how far the rays that met a back face went
+    int rays = 0, at_seam = 0;            ///< rays cast; those that met another surface right at a seam
+    /// The field slots the rays met right at seams, each once with its summed weight over the rays
+    /// divided by their count (final_gather.cpp's SeamReads): the rays' sum less these is the rest.
+    std::vector<std::pair<int32_t, double>> seam_slots;
+
+    std::size_t bytes() const;
+};
+
+/// One ray of a point's gather: what it hit (patch < 0: nothing) and whether it met its front.
+struct RayHit {
+    hr::Visibility::Hit hit;
+    bool front = false;
+};
+
+/// How the rays were cast and what counts as a seam: `grid` x `grid` stratified rays; a hit closer
+/// than `seam` times the square root of its element's area is right at a seam.
+struct RayGrid {
+    int grid = 1;
+    float seam = 0.0f;
+    bool gradients = false;  ///< fold the gradients' weights too
+};
+
+/// `hits` (ray i in the order cast) folded into weights; `wedges` may be null (no tables read).
+PointReads fold_reads(const Elements& elements, const CornerWedges* wedges, const RayGrid& grid,
+                      const std::vector<RayHit>& hits);
+
+/// The values a point's reads are evaluated on.
+struct ReadValues {
+    const Elements& elements;
+    const std::vector<Rgb>& field;     ///< 4 an element
+    const std::vector<Rgb>& radiance;  ///< solved, per element
+    const std::vector<Rgb>& emitted;   ///< own emission, per element
+    const CornerWedges* wedges;        ///< null: none
+    const std::vector<Rgb>* probe;     ///< the probe field, 4 an element (null: not read)
+};
+
+/// The sums a point's reads give (each over its rays, not yet divided by their count); `rest`: the
+/// sum less what the rays read of the field right at seams.
+struct ReadSums {
+    Rgb sum{0.0}, rest{0.0}, difference{0.0}, probe{0.0};
+    PlaneGradients gradients;  ///< of the mean (the weights hold the division), in the rays' tangent frame
+};
+
+ReadSums evaluate(const PointReads& reads, const ReadValues& values);
+
+}  // namespace radiosity::detail
