@@ -87,12 +87,19 @@ RowSettings row_settings(const BakeSettings& settings) {
 
 namespace {
 
-/// The lamps' and the world's first reflection, rho E / pi, added to the elements' emission.
-void add_first_reflection(Elements& elements, const BakeSettings& settings, BakeResult& result,
+/// The lamps' and the world's first reflection, rho E / pi, added to the elements' emission; each
+/// traced lamp's light on an element read from `kept` where an earlier bake kept it (may be null).
+void add_first_reflection(Elements& elements, const BakeSettings& settings, KeptFirstShot* kept, BakeResult& result,
                           const ProgressFn& progress) {
     auto start = Clock::now();
     if (!settings.lights.empty()) {
-        const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, progress);
+        LampLightThrough through;
+        const SourceSignatures signatures = source_signatures(settings.lights, WorldLight());
+        if (kept != nullptr)
+            through = [&](std::size_t e, std::size_t l, bool fully, const std::function<Rgb()>& trace) {
+                return kept->light(e, signatures.lamps[l][fully], trace);
+            };
+        const std::vector<Rgb> E = direct_irradiance(elements, settings.lights, through, progress);
         for (std::size_t e = 0; e < elements.size(); ++e) elements.emission[e] += elements.reflectance[e] * E[e] / M_PI;
     }
     result.seconds_lights += seconds_since(start);
@@ -159,7 +166,7 @@ void light_of_sources(const SceneInput& input, const BakeSettings& settings, Uni
     Elements& elements = transport.solve_elements();
     const std::vector<Rgb> solve_emitted = per_solve_element(transport.clusters, emitted);
     elements.emission = solve_emitted;
-    add_first_reflection(elements, settings, result, progress);
+    add_first_reflection(elements, settings, transport.kept_first_shot.get(), result, progress);
     const SmallEmitters small = light_from_small_emitters(elements, solve_emitted, settings, result, progress);
 
     const std::size_t copies = settings.solve.method == Method::Progressive ? 2 : 1;

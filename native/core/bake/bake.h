@@ -122,7 +122,7 @@ struct CacheUse {
     std::size_t bytes = 0;         ///< what the cache holds after the bake (0 when not kept)
     std::string not_reused;        ///< why it was not reused ("" when it was)
     std::string not_kept;          ///< why it was not kept ("" when it was)
-    std::size_t direct_bytes = 0;  ///< of `bytes`, the gather's direct light kept per source
+    std::size_t direct_bytes = 0;  ///< of `bytes`, the direct light kept per source (gather, first shot)
 };
 
 struct BakeResult {

@@ -13,7 +13,8 @@
 /// and the gather reads its recorded hits. Each source's direct light at each gathered point is kept
 /// under a signature of the source (kept_direct_light.h): shadow rays are traced again only towards
 /// the lamps, emitters and World that changed, with the sampling of a bake from scratch, so the
-/// re-bake's colours equal a bake from scratch to the bit.
+/// re-bake's colours equal a bake from scratch to the bit; so is each lamp's first shot onto the
+/// elements (kept_first_shot.h).
 ///
 /// What invalidates it (a hash, bake_cache.cpp geometry_key): the vertex positions, the polygons and
 /// their corners, the material ids, which polygons emit and which emit from their front only (an

@@ -50,10 +50,15 @@ std::size_t elements_bytes(const Elements& e) {
            e.corner_vertex.size() * sizeof(int32_t);
 }
 
+/// The direct light kept: at the gather's points and on the solve's elements.
+std::size_t kept_direct_bytes(const UniformTransport& t) {
+    return (t.kept_direct ? t.kept_direct->bytes() : 0) + (t.kept_first_shot ? t.kept_first_shot->bytes() : 0);
+}
+
 std::size_t transport_bytes(const UniformTransport& t) {
     return elements_bytes(t.build.elements) + elements_bytes(t.clusters.elements) +
            (t.form_factors ? t.form_factors->bytes() : 0) + (t.gather_hits ? t.gather_hits->bytes() : 0) +
-           (t.kept_direct ? t.kept_direct->bytes() : 0);
+           kept_direct_bytes(t);
 }
 
 /// The memory budget less the elements and F: what the gather's hits and kept direct light may take.
@@ -130,6 +135,8 @@ void keep_direct_light(UniformTransport& transport) {
     const std::size_t hits = transport.gather_hits->bytes();
     transport.kept_direct->set_budget(hits < budget ? budget - hits : 0);
     transport.kept_direct->begin_bake();
+    if (!transport.kept_first_shot) transport.kept_first_shot = std::make_unique<KeptFirstShot>();
+    transport.kept_first_shot->begin_bake(transport.solve_elements().size());
 }
 
 void release_transport(CachedTransport& cached, const BakeSettings& settings, BakeCache& cache) {
@@ -138,8 +145,11 @@ void release_transport(CachedTransport& cached, const BakeSettings& settings, Ba
     if (transport.kept_direct) {
         // Within the budget with the hits, recorded beside them; else the direct light goes (it is traced again).
         transport.kept_direct->prune();
-        if (transport.gather_hits->bytes() + transport.kept_direct->bytes() > transport.gather_hits->budget())
+        transport.kept_first_shot->prune();
+        if (transport.gather_hits->bytes() + kept_direct_bytes(transport) > transport.gather_hits->budget()) {
             transport.kept_direct->clear();
+            transport.kept_first_shot->clear();
+        }
     }
     if (cached.transport->gather_hits->full()) {
         use.not_kept = "the elements, form factors and the final gather's rays need more than the memory budget (" +
@@ -149,7 +159,7 @@ void release_transport(CachedTransport& cached, const BakeSettings& settings, Ba
     }
     use.kept = true;
     use.bytes = transport_bytes(*cached.transport);
-    use.direct_bytes = transport.kept_direct ? transport.kept_direct->bytes() : 0;
+    use.direct_bytes = kept_direct_bytes(transport);
     cache.keep(cached.key, std::move(cached.transport), use.bytes);
 }
 

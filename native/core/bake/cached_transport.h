@@ -35,8 +35,9 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
 /// that its elements and F leave.
 void make_room_for_hits(UniformTransport& transport, const BakeSettings& settings);
 
-/// Gives `transport` a kept direct light (if it has none) for a new bake, with room for it within
-/// what the memory budget leaves beside the hits (kept_direct_light.h).
+/// Gives `transport` a kept direct light and first shot (if it has none) for a new bake, with room
+/// for them within what the memory budget leaves beside the hits (kept_direct_light.h,
+/// kept_first_shot.h).
 void keep_direct_light(UniformTransport& transport);
 
 /// Gives the transport to the cache when it fits the memory budget (and every ray set the gather

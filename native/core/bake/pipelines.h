@@ -3,6 +3,7 @@
 #pragma once
 
 #include "bake/bake.h"
+#include "bake/kept_first_shot.h"
 #include "geometry/clusters.h"
 #include "output/gather_hits.h"
 #include "output/kept_direct_light.h"
@@ -67,6 +68,9 @@ struct UniformTransport {
     /// The gather's direct light per source, read and added to by every output pass over these
     /// elements (null: each gather traces its shadow rays); kept by a BakeCache only.
     std::unique_ptr<KeptDirectLight> kept_direct;
+    /// The lamps' first shot onto the solve's elements per lamp, read and added to by every bake over
+    /// these elements (null: each traces it); kept by a BakeCache only, beside kept_direct.
+    std::unique_ptr<KeptFirstShot> kept_first_shot;
     double seconds_elements = 0.0, seconds_form_factors = 0.0;
 
     /// The elements the form factors and the solve are over: the clusters', or the output's.

@@ -12,6 +12,7 @@
 #include "transport/point_light.h"
 #include "transport/sun_light.h"
 
+#include <functional>
 #include <vector>
 
 namespace radiosity {
@@ -35,6 +36,16 @@ std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& light
 /// The same with the elements' occluders given (a hr::Visibility of `elements` as direct_irradiance
 /// makes it: detail::blocking_corners, scene_diagonal), for a caller that lights them lamp by lamp.
 std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const hr::Visibility& visibility,
+                                   const ProgressFn& progress = {});
+
+/// One traced point or spot lamp's light on element `e` (`l` indexes Lights::points; `fully`: with
+/// all the rays its soft shadow needs): `trace()`, or what an earlier bake kept of the same call.
+using LampLightThrough =
+    std::function<Rgb(std::size_t e, std::size_t l, bool fully, const std::function<Rgb()>& trace)>;
+
+/// direct_irradiance with each traced lamp's light on each element passed through `through` (a
+/// re-bake traces only the lamps that changed; bake/kept_first_shot.h).
+std::vector<Rgb> direct_irradiance(const Elements& elements, const Lights& lights, const LampLightThrough& through,
                                    const ProgressFn& progress = {});
 
 /// Irradiance at points on surfaces (each facing its unit normal) from every lamp, shadows
