@@ -876,7 +876,9 @@ private:
 struct SharedLight {
     std::vector<std::vector<std::pair<int32_t, double>>> from;
     std::vector<CachePoint> at;
+    std::vector<uint8_t> read;  ///< per point: a record some interpolated point reads (with its gradients)
     bool interpolated(std::size_t i) const { return !from.empty() && !from[i].empty(); }
+    bool gradients_read(std::size_t i) const { return !read.empty() && read[i] != 0; }
 };
 
 /// Probe rays per output point for its records' harmonic mean distance.
@@ -911,10 +913,13 @@ SharedLight share_light(const Gatherer& gatherer, const Elements& elements, cons
     const CachePlan plan = plan_cache(cache, accuracy);
     shared.from.resize(points.size());
     shared.at.resize(points.size());
+    shared.read.assign(points.size(), 0);
     for (std::size_t c = 0; c < output.size(); ++c) {
         shared.at[std::size_t(output[c])] = cache[c];
-        for (const auto& [record, weight] : plan.from[c])
+        for (const auto& [record, weight] : plan.from[c]) {
             shared.from[std::size_t(output[c])].emplace_back(output[std::size_t(record)], weight);
+            shared.read[std::size_t(output[std::size_t(record)])] = 1;
+        }
     }
     return shared;
 }
@@ -1127,7 +1132,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
             if ((is_output[points[i]] ? gatherer : seam_gatherer)
                     .radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
                                  uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
-                                 {last ? &reads[i] : nullptr, &point_statistics[i], &p.gradients[i], &moved[i]}) &&
+                                 {last ? &reads[i] : nullptr, &point_statistics[i],
+                                  shared.gradients_read(i) ? &p.gradients[i] : nullptr, &moved[i]}) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&
                 std::isfinite(H.g) && std::isfinite(H.b)) {
                 value[i] = L;

@@ -37,8 +37,9 @@ struct PointReads {
         Wedge = 2,         ///< a wedge table's value (CornerWedges::reflected_entry)
         Emitted = 3,       ///< an element's own emission (taken away: weight -1 a ray)
     };
-    /// A value read and its weights, summed over the rays in double precision and kept in single
-    /// (12 bytes a term: a point's 2,304 rays' hits took 16 bytes a ray).
+    /// A value read and its weights, summed over the rays in double precision and kept in single:
+    /// 12 bytes a term, where a kept hit takes 16. The index has 30 bits: a scene's elements (at
+    /// most ElementLimits::max_elements) have 4 slots each, far fewer.
     struct Term {
         uint32_t read = 0;        ///< the source in the top two bits, the slot, element or table value below
         float sum = 0.0f;         ///< weight in the rays' sum
@@ -99,6 +100,7 @@ struct ReadSums {
     PlaneGradients gradients;  ///< of the mean (the weights hold the division), in the rays' tangent frame
 };
 
+/// What `reads` give over `values`.
 ReadSums evaluate(const PointReads& reads, const ReadValues& values);
 
 }  // namespace radiosity::detail
