@@ -43,8 +43,8 @@ public:
     /// ray tracer's parameters, as radiance_near blends the corners): reflectance x the sum over its
     /// corners with a table of weight x the table at the point's direction.
     Rgb correction(const Elements& elements, std::size_t element, float u, float v) const;
-    /// The same read as weights: appends each table value correction() reads (entry()) with its
-    /// weight, before the reflectance, to `terms`.
+    /// The same read as weights: appends each table value correction() reads (by the index
+    /// reflected_entry() takes) with its weight, before the reflectance, to `terms`.
     void terms(const Elements& elements, std::size_t element, float u, float v,
                std::vector<std::pair<int32_t, double>>& terms) const;
     /// A table value, by the index terms() gives, times the reflectance of its table's element.
