@@ -142,10 +142,14 @@ def test_isothermal_enclosure():
     assert obj.name in bpy.data.collections["Radiosity Bake"].objects
     assert os.path.isfile(bpy.path.abspath(obj.data.filepath))
     assert sorted(name for name, _ in core.vdb_grids(obj.data.filepath)) == ["density", "emission"]
-    # A second bake replaces its own output and nothing else.
+    # A second bake replaces its own output and nothing else, and writes beside the file the first
+    # bake's Volume shows (Blender 4.x would render the grids it loaded from that path before).
+    first_file = os.path.realpath(bpy.path.abspath(obj.data.filepath))
     addon.bake(bpy.context.scene, method="GAUSS_SEIDEL", element_size=0.5, hemicube_resolution=32)
-    assert len([o for o in bpy.data.objects if o.type == "VOLUME"]) == 1
+    (second,) = [o for o in bpy.data.objects if o.type == "VOLUME"]
     assert "Fog" in bpy.data.objects and "Furnace" in bpy.data.objects
+    assert os.path.realpath(bpy.path.abspath(second.data.filepath)) != first_file
+    assert os.path.isfile(first_file)  # the first bake's file stays: undo shows it again
 
 
 def test_scattering_medium_takes_the_walls_radiance():

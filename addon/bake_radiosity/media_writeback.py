@@ -42,13 +42,15 @@ def unwritable_reason(folder_setting):
 
 
 def write_files(exported_media, result, folder_setting):
-    """Writes one OpenVDB file per medium and returns their paths; touches no Blender data, so a
-    failure here leaves the file as it was."""
+    """Writes one OpenVDB file per medium and returns their paths; touches no Blender data and no
+    file a Volume shows, so a failure here leaves the file as it was."""
     folder = output_folder(folder_setting)
     os.makedirs(folder, exist_ok=True)
+    taken = set(exported_media.input_files) | _shown_files()
     paths = []
     for medium, grids in zip(exported_media.media, result["grids"]):
-        path = _output_path(folder, medium.object_name, exported_media.input_files)
+        path = _output_path(folder, medium.object_name, taken)
+        taken.add(os.path.realpath(path))
         native.core().write_vdb(path, grids["origin"], grids["voxel_size"], _file_grids(grids))
         paths.append(path)
     return paths
@@ -77,8 +79,15 @@ def remove_media():
             bpy.data.volumes.remove(volume)
 
 
+def _shown_files():
+    """The files the Volume data of this Blender file show (the last bake's among them)."""
+    return {os.path.realpath(bpy.path.abspath(volume.filepath)) for volume in bpy.data.volumes if volume.filepath}
+
+
 def _output_path(folder, object_name, protected):
-    """<object>.radiosity.vdb in `folder`, numbered on if that is one of the user's input files."""
+    """<object>.radiosity.vdb in `folder`, numbered on while that is in `protected`: the user's input
+    files, and the files a Volume shows. Blender 4.x keeps the grids it loaded by their file's path,
+    so a bake written over the file the last bake's Volume showed rendered the last bake's grids."""
     stem = re.sub(r"[^\w.-]+", "_", object_name)
     path, number = os.path.join(folder, stem + FILE_SUFFIX), 1
     while os.path.realpath(path) in protected:
