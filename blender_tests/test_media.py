@@ -150,6 +150,10 @@ def test_isothermal_enclosure():
     assert "Fog" in bpy.data.objects and "Furnace" in bpy.data.objects
     assert os.path.realpath(bpy.path.abspath(second.data.filepath)) != first_file
     assert os.path.isfile(first_file)  # the first bake's file stays: undo shows it again
+    # The third writes the first name again: no Volume shows it any more.
+    addon.bake(bpy.context.scene, method="GAUSS_SEIDEL", element_size=0.5, hemicube_resolution=32)
+    (third,) = [o for o in bpy.data.objects if o.type == "VOLUME"]
+    assert os.path.realpath(bpy.path.abspath(third.data.filepath)) == first_file
 
 
 def test_scattering_medium_takes_the_walls_radiance():
