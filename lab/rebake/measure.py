@@ -3,17 +3,18 @@ over the ordinary bake, on the Cornell box of blender_tests/scenes.py (its ceili
 lamps of 2 W, as lab/light_groups/measure.py lights it), the interior of lab/interior/level.py and a
 game level (--blend, e.g. /tmp/oa/q3dm6ish.blend as lab/levels/README.md makes it), at a preset.
 
-For each scene: the first bake in the session (it keeps its geometry), the re-bake after moving one
-point lamp by 0.3 m (it reuses it), and a bake from scratch of the moved lamp (reuse=False), whose
-colours the re-bake's must equal; then, from scratch, the ordinary bake and the bake with 1, 2 and 8
-light groups (lamp i in group i mod G, the emitting faces in group 0). Prints CPU and wall seconds
-(CPU: every thread of this process), the phases, the cache's memory and the largest difference of
-the re-bake's colours from the bake from scratch. Run inside Blender:
+For each scene: the first bake in the session (it keeps its geometry), the re-bake after an edit
+(it reuses it; `--edit`: one point lamp moved by 0.3 m, the first baked material's diffuse colour
+20% darker, or the first emitting material's strength doubled), and a bake from scratch after the
+edit (reuse=False), whose colours the re-bake's must equal; then, from scratch, the ordinary bake
+and the bake with 1, 2 and 8 light groups (lamp i in group i mod G, the emitting faces in group 0).
+Prints CPU and wall seconds (CPU: every thread of this process), the phases, the cache's memory and
+the largest difference of the re-bake's colours from the bake from scratch. Run inside Blender:
 
     BLENDER_USER_SCRIPTS=$(mktemp -d) BLENDER_USER_CONFIG=$(mktemp -d) \\
       blender -b --factory-startup --python-exit-code 1 --python lab/rebake/measure.py -- \\
         --addon-zip build/bake_radiosity.zip [--scenes cornell,interior,level] [--blend /tmp/oa/q3dm6ish.blend] \\
-        [--groups 0,1,2,8] [--quality MEDIUM]
+        [--groups 0,1,2,8] [--quality MEDIUM] [--edit lamp|colour|emission]
 """
 
 import argparse
@@ -72,16 +73,53 @@ def report(label, summary, cpu, wall, reference_cpu=None):
              cache.get("bytes", 0) / 2 ** 20, cache.get("direct_bytes", 0) / 2 ** 20, phases), flush=True)
 
 
-def measure_rebake(addon, quality):
+def move_lamp():
     lamp = point_lamps()[0]
+    lamp.location = tuple(a + b for a, b in zip(lamp.location, MOVE))
+
+
+def baked_materials():
+    return sorted({s.material for o in baked_meshes() for s in o.material_slots if s.material}, key=lambda m: m.name)
+
+
+def darken_colour():
+    """The first baked material's diffuse colour (Diffuse BSDF or Principled Base Color), 20% darker."""
+    for material in baked_materials():
+        for node in material.node_tree.nodes:
+            socket = node.inputs.get("Base Color") if node.type == "BSDF_PRINCIPLED" else (
+                node.inputs.get("Color") if node.type == "BSDF_DIFFUSE" else None)
+            if socket is not None and not socket.is_linked:
+                socket.default_value = tuple(0.8 * c for c in socket.default_value[:3]) + (1.0,)
+                return
+    raise RuntimeError("no diffuse colour to edit")
+
+
+def brighten_emission():
+    """The first emitting material's strength (Emission or Principled Emission Strength) doubled."""
+    for material in baked_materials():
+        for node in material.node_tree.nodes:
+            socket = node.inputs.get("Strength") if node.type == "EMISSION" else (
+                node.inputs.get("Emission Strength") if node.type == "BSDF_PRINCIPLED" else None)
+            if socket is not None and not socket.is_linked and socket.default_value > 0.0:
+                socket.default_value *= 2.0
+                return
+    raise RuntimeError("no emission to edit")
+
+
+EDITS = {"lamp": (move_lamp, "lamp moved"), "colour": (darken_colour, "colour darker"),
+         "emission": (brighten_emission, "emission doubled")}
+
+
+def measure_rebake(addon, quality, edit):
+    apply, what = EDITS[edit]
     first = bake(addon, "First", quality=quality, reuse=False)  # nothing kept before it
     first = bake(addon, "First", quality=quality)
     report("first bake", *first)
-    lamp.location = tuple(a + b for a, b in zip(lamp.location, MOVE))
+    apply()
     again = bake(addon, "Rebake", quality=quality)
-    report("re-bake, lamp moved", *again, reference_cpu=first[1])
+    report("re-bake, " + what, *again, reference_cpu=first[1])
     fresh = bake(addon, "Fresh", quality=quality, reuse=False)
-    report("from scratch, moved", *fresh)
+    report("from scratch, " + what, *fresh)
     difference = float(np.abs(colours("Rebake") - colours("Fresh")).max())
     print("  re-bake against the bake from scratch: largest corner difference %.3g" % difference, flush=True)
 
@@ -121,6 +159,7 @@ def main():
     parser.add_argument("--blend", default="/tmp/oa/q3dm6ish.blend", help="the game level")
     parser.add_argument("--groups", default="0,1,2,8", help="light groups (0: the ordinary bake, first)")
     parser.add_argument("--quality", default="MEDIUM")
+    parser.add_argument("--edit", default="lamp", choices=sorted(EDITS))
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
     addon = harness.install_addon(args.addon_zip)
     build = {"cornell": lambda: scenes.cornell_box_under_lamps(CORNELL_LAMPS), "interior": interior,
@@ -130,7 +169,7 @@ def main():
         print("%s at %s: %d faces, %d point lamps; load %.1f" % (
             name, args.quality, sum(len(o.data.polygons) for o in baked_meshes()), len(point_lamps()),
             os.getloadavg()[0]), flush=True)
-        measure_rebake(addon, args.quality)
+        measure_rebake(addon, args.quality, args.edit)
         measure_layers(addon, args.quality, [int(g) for g in args.groups.split(",")])
 
 
