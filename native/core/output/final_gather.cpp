@@ -482,23 +482,34 @@ private:
     }
 
     /// What visible_share reads besides the point and the geometry: the group's elements (those
-    /// facing the point), their radiance and its rays.
+    /// facing the point), their radiance relative to the group's brightest (so an emission's
+    /// strength changed alone keeps the share) and its rays.
     uint64_t group_signature(const EmitterGroups& groups, const EmitterGroup& group) const {
         Signature signature;
         signature.word(0x6A0U).number(group_rays(groups, group)).number(group.area);
         signature.word(uint32_t(group.first)).word(uint32_t(group.last));
+        const double brightest = brightest_radiance(groups, group);
         for (std::size_t i = group.first; i < group.last; ++i) {
             signature.word(groups.faces[i]);
-            if (groups.faces[i]) signature.rgb(scene_.emitters[i].radiance);
+            if (groups.faces[i]) signature.number(max_channel(scene_.emitters[i].radiance) / brightest);
         }
         return signature.value();
+    }
+
+    /// The largest channel of the brightest of `group`'s elements that face the point.
+    double brightest_radiance(const EmitterGroups& groups, const EmitterGroup& group) const {
+        double brightest = 0.0;
+        for (std::size_t i = group.first; i < group.last; ++i)
+            if (groups.faces[i]) brightest = std::max(brightest, max_channel(scene_.emitters[i].radiance));
+        return brightest;
     }
 
     /// The share of `group` that shadow rays from `origin` find unhidden. The group gets its share of
     /// `shadow_rays` by its unoccluded light (at least one), spread over its elements by area
     /// (systematic sampling) and stratified within each; the share is weighted by the kernel
-    /// cos cos / r^2 and the elements' radiance. So a wall split into a thousand emitting elements
-    /// costs its share of the rays, not a thousand.
+    /// cos cos / r^2 and the elements' radiance relative to the brightest's (a share, it does not
+    /// change with the group's strength). So a wall split into a thousand emitting elements costs
+    /// its share of the rays, not a thousand.
     double visible_share(const EmitterGroups& groups, const EmitterGroup& group, const Vec3& origin, const Vec3& normal,
                          uint32_t seed) const {
         const double weight = max_channel(group.light);
@@ -508,6 +519,7 @@ private:
         double next_pick = next_jitter(pick_seed) * group.area / rays, covered = 0.0;
         double visible = 0.0, seen = 0.0;
         int clear = 0, cast = 0;
+        const double brightest = brightest_radiance(groups, group);
         std::array<Vec3, 256> points;
         for (std::size_t i = group.first; i < group.last; ++i) {
             if (!groups.faces[i]) continue;
@@ -520,7 +532,7 @@ private:
             std::array<Vec3, 4> c;
             for (int k = 0; k < source.count; ++k) c[k] = Vec3(source.polygon[k]);
             stratified_points(c.data(), source.count, grid, mix_seed(seed, uint32_t(source.element)), points.data());
-            const double sample_weight = picks * max_channel(source.radiance) / double(grid * grid);
+            const double sample_weight = picks * (max_channel(source.radiance) / brightest) / double(grid * grid);
             for (int k = 0; k < grid * grid; ++k) {
                 const Vec3 d = points[k] - origin;
                 const float r2 = glm::dot(d, d);

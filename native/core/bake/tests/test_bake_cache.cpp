@@ -142,6 +142,11 @@ TEST(BakeCache, AReBakeTracesShadowRaysTowardsTheChangedSourcesAlone) {
     const BakeResult same = bake(scene.input(), settings, {}, &cache);
     EXPECT_EQ(same.gather_cost.rays(), 0u);
     expect_same_bake(same, first, "nothing changed");
+    // An emission's strength changed alone: the emitter's visible share is kept, no ray is traced.
+    for (int c = 0; c < 3; ++c) scene.emission[6 + c] *= 3.0f;
+    const BakeResult brighter = bake(scene.input(), settings, {}, &cache);
+    EXPECT_EQ(brighter.gather_cost.rays(), 0u);
+    expect_same_bake(brighter, bake(scene.input(), settings), "an emission's strength");
     // One lamp moved: its shadow rays alone, fewer than a re-bake that moves every lamp and the sun.
     settings.lights.points[0].position.x -= 0.4f;
     const BakeResult one = bake(scene.input(), settings, {}, &cache);
