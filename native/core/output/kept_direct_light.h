@@ -10,9 +10,10 @@
 /// follow from its light and the total, both known before any ray), the World's light. Each is kept
 /// under a signature of everything it is computed from besides the point and the geometry (the
 /// lamp's parameters, its index and whether it got all its rays; the group's elements, their
-/// radiance relative to its brightest, and its ray count; the World's map and sample counts): a source whose signature is found is read, any
-/// other traced and kept. So a re-bake's direct light is the same to the bit as a bake from
-/// scratch's, and costs the shadow rays of the moved, resized or recoloured sources only (the
+/// radiance relative to its brightest, and its ray count; the World's map and sample counts): a
+/// source whose signature is found is read, any other traced and kept. So a re-bake's direct light
+/// is the same to the bit as a bake from scratch's, and costs the shadow rays of the moved, resized
+/// or recoloured sources only (the
 /// precomputed, per-source light transport of Sloan, Kautz and Snyder 2002 and of the per-light
 /// layers of UberBake, Rodriguez et al. 2020, kept here as the values themselves).
 ///
