@@ -81,15 +81,19 @@ void KeptDirectLight::store(const Key& key, std::vector<Value>&& values) {
     bytes_.fetch_sub(before, std::memory_order_relaxed);
 }
 
+void KeptDirectLight::drop_unused(std::vector<Value>& values, uint32_t bake) {
+    values.erase(std::remove_if(values.begin(), values.end(), [&](const Value& v) { return v.bake != bake; }),
+                 values.end());
+    values.shrink_to_fit();
+}
+
 void KeptDirectLight::prune() {
     for (Shard& s : shards_) {
         const std::lock_guard<std::mutex> lock(s.mutex);
         for (auto it = s.map.begin(); it != s.map.end();) {
             std::vector<Value>& values = it->second;
             const std::size_t before = point_bytes(values.capacity());
-            values.erase(std::remove_if(values.begin(), values.end(), [&](const Value& v) { return v.bake != bake_; }),
-                         values.end());
-            values.shrink_to_fit();
+            drop_unused(values, bake_);
             bytes_.fetch_sub(before, std::memory_order_relaxed);
             if (values.empty()) {
                 it = s.map.erase(it);

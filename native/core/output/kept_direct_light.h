@@ -57,6 +57,22 @@ public:
     KeptDirectLight(const KeptDirectLight&) = delete;
     KeptDirectLight& operator=(const KeptDirectLight&) = delete;
 
+    /// The light in `values` under `signature`, marked as used by `bake`; else `compute()` (returning
+    /// Rgb), kept so.
+    template <typename Compute>
+    static Rgb kept_or_made(std::vector<Value>& values, uint64_t signature, uint32_t bake, const Compute& compute) {
+        for (Value& value : values)
+            if (value.signature == signature) {
+                value.bake = bake;
+                return value.light;
+            }
+        const Rgb made = compute();
+        values.push_back({signature, made, bake});
+        return made;
+    }
+    /// Drops the values of `values` that `bake` did not use, and the room they took.
+    static void drop_unused(std::vector<Value>& values, uint32_t bake);
+
     /// A new bake begins: what it does not use is dropped by prune().
     void begin_bake() { ++bake_; }
     /// Drops the values the latest bake did not use.
@@ -76,14 +92,7 @@ public:
         template <typename Compute>
         Rgb light(uint64_t signature, const Compute& compute) {
             if (kept_ == nullptr) return compute();
-            for (Value& value : values_)
-                if (value.signature == signature) {
-                    value.bake = kept_->bake_;
-                    return value.light;
-                }
-            const Rgb made = compute();
-            values_.push_back({signature, made, kept_->bake_});
-            return made;
+            return kept_or_made(values_, signature, kept_->bake_, compute);
         }
         /// Keeps the values read and made.
         void finish();

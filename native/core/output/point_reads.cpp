@@ -73,7 +73,7 @@ struct RayWeights {
     const glm::dvec2* translation;
 };
 
-/// Adds `weight` of the value `index` from `source`, read by `ray`; `seam`: right at a seam.
+/// Adds `weight` of the value `value` from `source`, read by `ray`; returns its term.
 Folded& add(TermIndex& index, Source source, std::size_t value, double weight, const RayWeights& ray) {
     Folded& term = index.term(source, value);
     term.sum += weight;
