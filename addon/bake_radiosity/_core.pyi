@@ -80,8 +80,9 @@ def bake(positions: np.ndarray, face_offsets: np.ndarray, corner_vertices: np.nd
 def plan(positions: np.ndarray, face_offsets: np.ndarray, corner_vertices: np.ndarray, reflectance: np.ndarray,
          emission: np.ndarray, material: Optional[np.ndarray] = None, *, front_only: Optional[np.ndarray] = None,
          textures: Optional[dict[str, Any]] = None, **settings: Any) -> dict[str, Any]:
-    """What bake() with the same arrays and settings will solve: its elements, solve_elements and
-    solve_element_area, matrix_bytes_bound, matrix_bytes_planned, matrix_stored, sight_distance and resolution_distance."""
+    """What bake() with the same arrays and settings will solve: its elements, solve_elements,
+    solve_element_area, solve_element_polygon, matrix_bytes_bound, matrix_bytes_planned, matrix_stored,
+    sight_distance and resolution_distance."""
 
 
 def matrix_bytes_bound(element_count: int, resolution: int) -> int: ...

@@ -92,6 +92,7 @@ py::dict plan_arrays(const Array<float>& positions, const Array<int32_t>& face_o
     add_elements(planned.build, out);
     out["solve_elements"] = planned.solve_elements;
     out["solve_element_area"] = to_numpy(planned.solve_element_area);
+    out["solve_element_polygon"] = to_numpy(planned.solve_element_polygon);
     out["matrix_bytes_bound"] = planned.matrix_bytes_bound;
     out["matrix_bytes_planned"] = planned.matrix_bytes_planned;
     out["matrix_stored"] = planned.matrix_stored;
@@ -169,8 +170,8 @@ void bind_bake(py::module_& m) {
     m.def("plan", &plan_arrays,
           "What bake() with the same arrays and settings will solve, without solving: its elements (element_vertices, "
           "element_corners, element_polygon, element_area, elements, skipped; in the order of its progress radiance; "
-          "the hierarchy's patches), solve_elements and solve_element_area (the unknowns and their areas: fewer than "
-          "the elements where small ones merge), "
+          "the hierarchy's patches), solve_elements, solve_element_area and solve_element_polygon (the unknowns, "
+          "their areas and input polygons: fewer than the elements where small ones merge), "
           "matrix_bytes_bound, matrix_bytes_planned (uniform methods: the bound when it fits matrix_budget_bytes, "
           "else the bytes estimated from a sample of the matrix's rows at the settings' resolution, with a margin of "
           "3 standard errors), matrix_stored (the planned bytes fit the budget: the form factors are stored, else "

@@ -167,8 +167,8 @@ class Resolution:
 def direct_emitter_area(layout, emitting, resolution, preset):
     """Emitting elements smaller than what `resolution` resolves (`_core.resolved_area`) light the
     elements directly, the smallest first within DIRECT_EMITTER_PAIRS emitter-element pairs: (area
-    bound, how many)."""
-    area = layout["element_area"]
+    bound, how many). `emitting`: per element the solve has as an unknown (solved_areas)."""
+    area = solved_areas(layout)
     bound = native.core().resolved_area(layout["resolution_distance"], resolution, preset.cells)
     small = np.sort(area[emitting & (area < bound)])
     most = DIRECT_EMITTER_PAIRS // max(1, len(solved_areas(layout)))
@@ -186,19 +186,24 @@ def preset_resolution(layout, emitting, preset, zonal=False):
     (direct_emitter_area; not in the zonal bake).
     Capped at 1024 it adds rotations, except in the zonal bake, which takes none."""
     core = native.core()
-    area, distance, solved = layout["element_area"], layout["resolution_distance"], solved_areas(layout)
+    distance, area = layout["resolution_distance"], solved_areas(layout)
     direct = (0.0, 0)
     if not zonal and emitting.any():
-        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(solved, distance, preset.cells),
+        direct = direct_emitter_area(layout, emitting, core.recommended_resolution(area, distance, preset.cells),
                                      preset)
         emitting = emitting & ~(area < direct[0])
     seen_from = _seen_from(layout)
-    found = _resolution_for_groups(core, solved, area[emitting], distance, seen_from, preset, zonal)
+    found = _resolution_for_groups(core, area, area[emitting], distance, seen_from, preset, zonal)
     if not direct[1]:
         return found
     reason = found.reason + "; %d small emitting element%s light the scene directly" % (
         direct[1], "" if direct[1] == 1 else "s")
     return Resolution(found.resolution, found.rotations, reason, *direct)
+
+
+def solved_polygons(layout):
+    """The input polygon of each element the solve has as an unknown (a merged one's first member's)."""
+    return layout.get("solve_element_polygon", layout["element_polygon"])
 
 
 def solved_areas(layout):
@@ -282,7 +287,7 @@ def _choose(settings, exported, media, size, preset, gathered):
         resolution += resolution % 2  # the core's hemi-cube has a centre line: even resolutions only
         chosen = Resolution(resolution, 1, "set by hand (Custom)")
     else:
-        emitting = exported.emission[layout["element_polygon"]].max(axis=1) > 0.0
+        emitting = exported.emission[solved_polygons(layout)].max(axis=1) > 0.0
         chosen = preset_resolution(layout, emitting, preset, zonal)
     resolution = chosen.resolution
     budget = int(settings["memory_budget"]) * MEBIBYTE

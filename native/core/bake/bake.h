@@ -173,7 +173,8 @@ struct BakePlan {
     /// The unknowns' areas, square metres: what the hemi-cube's resolution must resolve (the
     /// uniform bake's merged elements; else build's elements').
     std::vector<float> solve_element_area;
-    std::size_t matrix_bytes_bound = 0;  ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
+    std::vector<int32_t> solve_element_polygon;  ///< the input polygon each unknown came from (a merged one's first)
+    std::size_t matrix_bytes_bound = 0;          ///< uniform and media bakes: matrix_bytes_bound at settings.resolution
     /// Uniform bakes: the bound when it fits the budget, else the stored matrix's bytes estimated
     /// from a sample of its rows at settings' resolution, rotations and near field, with a margin
     /// (matrix_estimate.h); media bakes: the bound.

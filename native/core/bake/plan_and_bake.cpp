@@ -101,6 +101,7 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     if (settings.hierarchical.enabled) {
         plan.build = hierarchy_patches(input, detail::hierarchy_settings(settings));
         plan.solve_element_area = plan.build.elements.area;
+        plan.solve_element_polygon = plan.build.elements.polygon;
         plan.solve_elements = plan.solve_element_area.size();
         distances(plan);
         return plan;
@@ -110,6 +111,7 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     distances(plan);
     if (with_media(settings)) {  // the media bake always stores its matrix (or refuses to bake beyond the budget)
         plan.solve_element_area = plan.build.elements.area;
+        plan.solve_element_polygon = plan.build.elements.polygon;
         plan.solve_elements = plan.solve_element_area.size();
         plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
         plan.matrix_bytes_planned = plan.matrix_bytes_bound;
@@ -119,6 +121,7 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
     const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
     const Elements& solved = clusters.merged() ? clusters.elements : plan.build.elements;
     plan.solve_element_area = solved.area;
+    plan.solve_element_polygon = solved.polygon;
     plan.solve_elements = solved.size();
     plan.matrix_bytes_bound = matrix_bytes_bound(plan.solve_elements, settings.resolution);
     plan.matrix_bytes_planned = detail::planned_matrix_bytes(solved, settings);

@@ -41,8 +41,9 @@ struct Region {
     std::vector<int32_t> members;
     DVec3 normal{0.0};
     int32_t material = 0;
-    Rgb reflectance{0.0};
-    int32_t lattice = 0;  ///< its plane's Lattice
+    Rgb reflectance{0.0}, emission{0.0};
+    uint8_t side = Elements::kOneSided;  ///< an emitting polygon's fronts and back sides merge apart
+    int32_t lattice = 0;                 ///< its plane's Lattice
     bool alive = true;
 };
 
@@ -62,23 +63,24 @@ bool textured(const SceneInput& input, int32_t face) {
            (t->emission_texture != nullptr && t->emission_texture[face] >= 0);
 }
 
-/// Whether element e may merge: a one-sided front that neither emits nor is a lamp, of an
-/// untextured face, no nearer to a point lamp than `near` (elements nearer see the lamp's light and
-/// the geometry around it change within a merged element's size). (Elements along intersection and
-/// contact lines merge too, but never across the line: joined_outline.)
+/// Whether element e may merge: an element that is not a lamp's, of an untextured face, no nearer
+/// to a point lamp than `near` (elements nearer see the lamp's light and the geometry around it
+/// change within a merged element's size). An emitting polygon's fronts merge with fronts, its back
+/// sides with back sides (alike). (Elements along intersection and contact lines merge too, but
+/// never across the line: joined_outline.)
 bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e, const std::vector<Vec3>& lamps,
                double near) {
-    if (elements.has_twin(e) || max_channel(elements.emission[e]) > 0.0) return false;
     if (!elements.blocks(e)) return false;
     for (const Vec3& lamp : lamps)
         if (glm::distance(elements.centre[e], lamp) < near) return false;
     return !textured(input, elements.polygon[e]);
 }
 
-/// An oriented edge between two corners, by their bits: neighbouring faces' elements meet at
-/// bit-identical points (build_elements places shared edge points so).
+/// An oriented edge between two corners, by their bits (neighbouring faces' elements meet at
+/// bit-identical points: build_elements places shared edge points so), and the side of the regions
+/// that have it: an emitting front's edge is its back side's reversed, which is the next front's.
 struct EdgeKey {
-    std::array<uint32_t, 6> bits;
+    std::array<uint32_t, 7> bits;
     bool operator==(const EdgeKey& other) const { return bits == other.bits; }
 };
 
@@ -86,10 +88,10 @@ struct EdgeHash {
     std::size_t operator()(const EdgeKey& key) const { return detail::WordsHash()(key.bits); }
 };
 
-EdgeKey edge_key(const Vec3& from, const Vec3& to) {
+EdgeKey edge_key(const Vec3& from, const Vec3& to, uint8_t side = Elements::kOneSided) {
     using detail::float_bits;
     return {{float_bits(from.x), float_bits(from.y), float_bits(from.z), float_bits(to.x), float_bits(to.y),
-             float_bits(to.z)}};
+             float_bits(to.z), uint32_t(side)}};
 }
 
 /// Where an oriented edge is: its region and the corner it starts at; region -1 when two regions
@@ -106,7 +108,8 @@ EdgeMap edges_of(const std::vector<Region>& regions) {
         if (!regions[r].alive) continue;
         const std::vector<Vec3>& c = regions[r].corners;
         for (std::size_t k = 0; k < c.size(); ++k) {
-            const auto [at, fresh] = map.try_emplace(edge_key(c[k], c[(k + 1) % c.size()]), EdgeAt{int32_t(r), int(k)});
+            const auto [at, fresh] =
+                map.try_emplace(edge_key(c[k], c[(k + 1) % c.size()], regions[r].side), EdgeAt{int32_t(r), int(k)});
             if (!fresh) at->second.region = -1;
         }
     }
@@ -168,9 +171,10 @@ double longest_edge(const std::vector<Vec3>& outline) {
     return longest;
 }
 
-/// Whether two regions are one surface in one plane.
+/// Whether two regions are one surface in one plane, on the same side.
 bool alike(const Region& a, const Region& b, double plane_distance) {
-    if (a.material != b.material || a.reflectance != b.reflectance) return false;
+    if (a.material != b.material || a.reflectance != b.reflectance || a.emission != b.emission || a.side != b.side)
+        return false;
     if (glm::dot(a.normal, b.normal) < kCoplanarCosine) return false;
     for (const Vec3& p : b.corners)
         if (std::abs(glm::dot(DVec3(p) - DVec3(a.corners[0]), a.normal)) > plane_distance) return false;
@@ -232,6 +236,8 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
         region.normal = DVec3(elements.normal[e]);
         region.material = input.material != nullptr ? input.material[elements.polygon[e]] : 0;
         region.reflectance = elements.reflectance[e];
+        region.emission = elements.emission[e];
+        region.side = elements.side.empty() ? Elements::kOneSided : elements.side[e];
         region_of[e] = int32_t(regions.size());
         regions.push_back(std::move(region));
     }
@@ -282,7 +288,7 @@ Partner best_partner(const Round& round, std::size_t r) {
     const Region& a = round.regions[r];
     Partner best;
     for (std::size_t k = 0; k < a.corners.size(); ++k) {
-        const auto found = round.edges.find(edge_key(a.corners[(k + 1) % a.corners.size()], a.corners[k]));
+        const auto found = round.edges.find(edge_key(a.corners[(k + 1) % a.corners.size()], a.corners[k], a.side));
         if (found == round.edges.end() || found->second.region < 0) continue;
         const std::size_t n = std::size_t(found->second.region);
         const Region& b = round.regions[n];
@@ -377,7 +383,7 @@ public:
         out_.reflectance.push_back(output_.reflectance[first]);
         out_.emission.push_back(output_.emission[first]);
         out_.cut_edges.push_back(cut);
-        if (!output_.side.empty()) out_.side.push_back(Elements::kOneSided);
+        if (!output_.side.empty()) out_.side.push_back(region.side);
         if (!output_.lamp.empty()) out_.lamp.push_back(0);
     }
 

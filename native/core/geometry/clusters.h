@@ -5,7 +5,8 @@
 /// A finely tessellated wall needs no more unknowns than a coarse one: light is smooth across it.
 /// build_elements splits large faces down to the element size but keeps every small face whole, so
 /// the solve would follow the tessellation. Here neighbouring elements that share a whole edge, lie
-/// in one plane and are the same surface (material, reflectance, no emission, no texture; the edge
+/// in one plane and are the same surface (material, reflectance, emission, side: an emitting
+/// polygon's fronts with fronts, its back sides with back sides; no texture, no lamp; the edge
 /// between them on no intersection or contact line, Elements::cut_edges) are merged, two at a time,
 /// as long as what they form is a convex triangle or quad no longer than the element size, in
 /// rounds (triangles into quads, then along each plane's lattice, then any pair that still can): a
@@ -30,10 +31,9 @@ namespace radiosity {
 /// The solve's elements and which of them each output element lies in.
 struct Clusters {
     /// The solve's elements: merged convex triangles and quads (their edges on cut lines marked in
-    /// cut_edges), and every element that was not merged (emitters, their back sides, textured
-    /// faces) as it was. Emitting
-    /// fronts keep their order before the back sides, as build_elements orders them. Empty
-    /// when nothing merged: the output's elements are the solve's.
+    /// cut_edges), and every element that was not merged (lamps' and textured faces', those near a
+    /// point lamp) as it was. Emitting fronts keep their order before the back sides, as
+    /// build_elements orders them. Empty when nothing merged: the output's elements are the solve's.
     Elements elements;
     /// Per output element, its solve element; empty when nothing merged.
     std::vector<int32_t> of_element;
@@ -59,8 +59,8 @@ std::vector<T> per_output_element(const Clusters& clusters, const std::vector<T>
     return out;
 }
 
-/// `per_output` (one value per output element, equal within each merged cluster, as emission is:
-/// only elements that do not emit merge) for the solve elements; `per_output` when nothing merged.
+/// `per_output` (one value per output element, equal within each merged cluster, as the members'
+/// material, reflectance and emission are) for the solve elements; `per_output` when nothing merged.
 template <typename T>
 std::vector<T> per_solve_element(const Clusters& clusters, const std::vector<T>& per_output) {
     if (!clusters.merged()) return per_output;

@@ -49,6 +49,13 @@ struct PointOutputs {
     uint8_t* moved = nullptr;               ///< whether its first point was buried and another taken
 };
 
+/// Per element vertex, the direct light the field found there (gather_field), where it is known.
+struct KnownDirectLight {
+    std::vector<Rgb> light;
+    std::vector<uint8_t> known;
+    bool at(int32_t vertex) const { return !known.empty() && known[std::size_t(vertex)] != 0; }
+};
+
 /// What a point's probe rays found (Gatherer::probe): where it is gathered, the harmonic mean and
 /// the least of their hit distances, and whether any met a back face (it may be buried).
 struct Probe {
@@ -116,8 +123,8 @@ public:
     /// `polygon_centre`); false when the point is buried. `place` seeds the rays: vertices at one
     /// place get the same directions, so coplanar faces around a vertex differ only where the
     /// light does. `light`: the light arriving there, direct + indirect (irradiance / pi).
-    /// `direct`: the point's direct light, computed when `direct_known` is false (a later pass at the
-    /// same vertex picks the same point: the buried test does not read the solution).
+    /// `direct`: the point's direct light, computed when `direct_known` is false or the first point
+    /// is buried (given: the direct light at the first point, from the field or an earlier pass).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
                      Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
                      const PointOutputs& outputs = {}) const {
@@ -150,7 +157,7 @@ public:
             Rgb indirect(0.0);
             if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, outputs)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
-            if (!direct_known) direct_light = direct(x, origin, n, seed);
+            if (!direct_known || i > 0) direct_light = direct(x, origin, n, seed);
             if (outputs.reads != nullptr) outputs.reads->direct = direct_light;
             light = direct_light + indirect;
             out = scene_.emitted[e] + elements_.reflectance[e] * light;
@@ -614,25 +621,29 @@ std::vector<uint8_t> seam_vertices(const Elements& elements, const std::vector<i
 /// the vertices, not by the hemi-cube's cells) and its indirect light from the solution one bounce
 /// further away, where the solution's error counts times the reflectance. Buried vertices keep
 /// their interpolated values. A vertex at a flat place takes the light of its place's lowest vertex
-/// (flat_places.h: `same_place`), with its own element's reflectance and emission.
+/// (flat_places.h: `same_place`), with its own element's reflectance and emission. `direct`: per
+/// element vertex, the direct light found there where the field's point was not buried (the output
+/// points' direct light, the same shadow rays from the same place).
 template <typename PolygonCentre>
 void gather_field(const Gatherer& gatherer, const Elements& elements, const std::vector<Rgb>& emitted,
                   const std::vector<int32_t>& element_at, const std::vector<int32_t>& same_place,
                   const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
                   const PolygonCentre& polygon_centre, const ProgressFn& progress, std::vector<Rgb>& field,
-                  std::vector<PointStatistics>& statistics) {
+                  std::vector<PointStatistics>& statistics, KnownDirectLight& direct) {
     std::vector<int32_t> vertices;
     for (std::size_t v = 0; v < elements.vertices.size(); ++v)
         if (element_at[v] >= 0 && same_place[v] == int32_t(v)) vertices.push_back(int32_t(v));
     std::vector<Rgb> value(elements.vertices.size()), light_at(elements.vertices.size());
-    std::vector<uint8_t> done(elements.vertices.size(), 0);
+    std::vector<uint8_t> done(elements.vertices.size(), 0), moved(elements.vertices.size(), 0);
+    direct.light.assign(elements.vertices.size(), Rgb(0.0));
+    direct.known.assign(elements.vertices.size(), 0);
     parallel_rows("gather field", vertices.size(), 16, 0, progress, [&](std::size_t t) {
         const std::size_t v = std::size_t(vertices[t]);
         const std::size_t e = std::size_t(element_at[v]);
-        Rgb L, light, direct;
+        Rgb L, light;
         float seam_share = 0.0f;
         if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
-                                 seam_share, direct, false, {nullptr, &statistics[v]}) &&
+                                 seam_share, direct.light[v], false, {nullptr, &statistics[v], nullptr, &moved[v]}) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
             light_at[v] = light;
@@ -642,7 +653,10 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
     });
     for (std::size_t v = 0; v < elements.vertices.size(); ++v) {
         const std::size_t from = std::size_t(same_place[v]), e = std::size_t(std::max(element_at[v], 0));
-        if (from == v || element_at[v] < 0 || !done[from]) continue;
+        if (element_at[v] < 0 || !done[from]) continue;
+        direct.light[v] = direct.light[from];
+        direct.known[v] = !moved[from];
+        if (from == v) continue;
         value[v] = emitted[e] + elements.reflectance[e] * light_at[from];
         statistics[v] = statistics[from];
         done[v] = 1;
@@ -899,29 +913,48 @@ constexpr int kProbeRays = 64;
 /// Which output points gather (irradiance_cache.h plan_cache), from their probe rays: those at
 /// `keep_vertex` (seams, turning vertices), those whose probe met a back face (maybe buried) or a
 /// surface nearer than their element's size (a contact), and the records; `accuracy` <= 0: all.
+/// The points at one flat place (`same_place`, flat_places.h) share one probe: the same place, the
+/// same plane, the same seeds.
 SharedLight share_light(const Gatherer& gatherer, const Elements& elements, const GatherPoints& gathered,
                         const std::vector<Vec3>& approach, const std::vector<int32_t>& place,
-                        const std::vector<uint8_t>& keep_vertex, double accuracy, float scene_size,
-                        const ProgressFn& progress) {
+                        const std::vector<int32_t>& same_place, const std::vector<uint8_t>& keep_vertex,
+                        double accuracy, float scene_size, const ProgressFn& progress) {
     SharedLight shared;
     if (!(accuracy > 0.0)) return shared;
     const std::vector<int32_t>& points = gathered.points;
     std::vector<int32_t> output;
     for (std::size_t i = 0; i < points.size(); ++i)
         if (gathered.is_output[std::size_t(points[i])]) output.push_back(int32_t(i));
-    std::vector<CachePoint> cache(output.size());
-    parallel_rows("gather probes", output.size(), 16, 0, progress, [&](std::size_t c) {
-        const int32_t v = points[std::size_t(output[c])];
-        const std::size_t e = std::size_t(gathered.element_at[std::size_t(v)]);
-        const Probe probe =
-            gatherer.probe(v, e, approach[std::size_t(v)], uint32_t(place[std::size_t(v)]), kProbeRays, scene_size);
-        const bool contact = probe.nearest < std::sqrt(double(elements.area[e]));
-        cache[c] = {glm::dvec3(probe.position), glm::dvec3(elements.normal[e]), probe.harmonic_distance,
-                    keep_vertex[std::size_t(v)] || probe.back_face || contact ||
-                        gatherer.covered(v, e, approach[std::size_t(v)])};
-
+    auto vertex_of = [&](std::size_t c) { return points[std::size_t(output[c])]; };
+    auto element_of = [&](std::size_t c) { return std::size_t(gathered.element_at[std::size_t(vertex_of(c))]); };
+    std::vector<int64_t> prober(same_place.size(), -1);  // per vertex standing for a place: its output point probed
+    std::vector<std::size_t> probed;
+    for (std::size_t c = 0; c < output.size(); ++c) {
+        int64_t& first = prober[std::size_t(same_place[std::size_t(vertex_of(c))])];
+        if (first < 0) {
+            first = int64_t(c);
+            probed.push_back(c);
+        }
+    }
+    std::vector<Probe> probes(output.size());
+    parallel_rows("gather probes", probed.size(), 16, 0, progress, [&](std::size_t t) {
+        const std::size_t c = probed[t];
+        const int32_t v = vertex_of(c);
+        probes[c] = gatherer.probe(v, element_of(c), approach[std::size_t(v)], uint32_t(place[std::size_t(v)]),
+                                   kProbeRays, scene_size);
         return true;
     });
+    std::vector<CachePoint> cache(output.size());
+    for (std::size_t c = 0; c < output.size(); ++c) {
+        const int32_t v = vertex_of(c);
+        const std::size_t e = element_of(c);
+        const Probe& probe = probes[std::size_t(prober[std::size_t(same_place[std::size_t(v)])])];
+        const bool contact = probe.nearest < std::sqrt(double(elements.area[e]));
+        cache[c] = {glm::dvec3(gatherer.first_point(v, e, approach[std::size_t(v)])), glm::dvec3(elements.normal[e]),
+                    probe.harmonic_distance,
+                    keep_vertex[std::size_t(v)] || probe.back_face || contact ||
+                        gatherer.covered(v, e, approach[std::size_t(v)])};
+    }
     const CachePlan plan = plan_cache(cache, accuracy);
     shared.from.resize(points.size());
     shared.at.resize(points.size());
@@ -1069,12 +1102,13 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     std::vector<Rgb> field = colors.element_corner;
     CornerWedges wedges;
     std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
+    KnownDirectLight field_direct;
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
-                     progress, field, field_statistics);
+                     progress, field, field_statistics, field_direct);
         keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
         meter.add_to(cost.field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
@@ -1122,7 +1156,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     std::vector<uint8_t> keep_vertex = seam_vertices(elements, place, places, true);
     for (std::size_t v = 0; v < keep_vertex.size(); ++v) keep_vertex[v] |= turning[v];
     const SharedLight shared = share_light(Gatherer(scene, field, settings), elements, gathered, approach, place,
-                                           keep_vertex, settings.cache_accuracy, scene_size, progress);
+                                           same_place, keep_vertex, settings.cache_accuracy, scene_size, progress);
     meter.add_to(cost.probes);
     const std::vector<std::size_t> direct_from = shared_direct_light(gathered, shared, same_place);
     const int passes = 2;
@@ -1133,8 +1167,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
+            const bool direct_known = pass > 0 || field_direct.at(points[i]);
+            if (pass == 0 && direct_known) direct[i] = field_direct.light[std::size_t(points[i])];
             if (shared.interpolated(i)) {  // its direct light only; its indirect is read below
-                if (direct_from[i] == i)
+                if (direct_from[i] == i && !direct_known)
                     direct[i] = gatherer.direct_light(points[i], e, approach[std::size_t(points[i])],
                                                       uint32_t(place[points[i]]));
                 return true;
@@ -1143,7 +1179,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
             float share = 0.0f;
             if ((is_output[points[i]] ? gatherer : seam_gatherer)
                     .radiance_at(points[i], e, polygon_centre(e), approach[std::size_t(points[i])],
-                                 uint32_t(place[points[i]]), L, H, share, direct[i], pass > 0,
+                                 uint32_t(place[points[i]]), L, H, share, direct[i], direct_known,
                                  {last ? &reads[i] : nullptr, &point_statistics[i],
                                   shared.gradients_read(i) ? &p.gradients[i] : nullptr, &moved[i]}) &&
                 std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b) && std::isfinite(H.r) &&

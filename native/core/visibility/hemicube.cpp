@@ -102,6 +102,7 @@ struct Hemicube::Impl {
     std::vector<uint16_t> code;        ///< per element vertex outcode
     std::vector<double> sum;           ///< accumulate(): per element
     std::vector<int32_t> touched;
+    float eye_scale = 0.0f;  ///< the largest coordinate of the eye: float positions' round-off scales with it
 
     void render(const Elements& elements, const Vec3& origin, const std::array<Vec3, 3>& frame, bool hemisphere,
                 int32_t exclude);
@@ -116,6 +117,7 @@ void Hemicube::Impl::render(const Elements& elements, const Vec3& origin, const 
     const int n = weights->resolution;
     layout = hemisphere ? cube::hemisphere_layout(n) : cube::sphere_layout(n);
     basis = frame;
+    eye_scale = std::max({std::abs(origin.x), std::abs(origin.y), std::abs(origin.z)});
     inverse_depth.assign(layout.cells(), 0.0f);
     item.assign(layout.cells(), -1);
     if (sum.size() < elements.size()) sum.resize(elements.size(), 0.0);
@@ -159,9 +161,11 @@ template <int K>
 void Hemicube::Impl::draw(const Elements& elements, int32_t e, uint8_t face_set, const Vec3& centre) {
     const Vec3& nw = elements.normal[e];
     const Vec3 normal(glm::dot(basis[0], nw), glm::dot(basis[1], nw), glm::dot(basis[2], nw));
-    // Distance of the element's plane from the eye, negative when the eye sees its front.
+    // Distance of the element's plane from the eye, negative when the eye sees its front. Within the
+    // round-off of float positions the eye lies in the plane (a merged emitter's own back sides,
+    // under the eye): edge-on, it covers no area.
     const float plane = glm::dot(normal, centre);
-    if (!(plane * plane > 1e-12f * glm::dot(centre, centre))) return;  // edge-on: covers no area
+    if (!(std::abs(plane) > 1e-6f * (glm::length(centre) + eye_scale))) return;
     // An emitter's two sides lie on the same vertices and cover the same cells at the same depth:
     // seen from behind, an element that has a twin is left to it, which faces the eye.
     if (plane >= 0.0f && elements.has_twin(e)) return;

@@ -108,7 +108,8 @@ TEST(Clusters, TriangulatedSquareMergesToTheCoarseElements) {
 }
 
 /// Faces merge only with faces of the same surface in the same plane: not across a change of
-/// reflectance or material, a fold, an emitter, or a textured face.
+/// reflectance, material or emission, nor over a fold; an emitter's fronts merge with fronts and its
+/// back sides with back sides, the fronts staying before the back sides.
 TEST(Clusters, UnlikeFacesStaySeparate) {
     const int cells = 16;  // faces of 1/16 m: 4 x 4 of them make an element
     {
@@ -120,8 +121,14 @@ TEST(Clusters, UnlikeFacesStaySeparate) {
         BuildResult build;
         const Clusters clusters = clusters_of(halves, build);
         ASSERT_TRUE(clusters.merged());
-        // 3 merged blocks of 2 x 4 elements, and the emitting block's 64 faces, fronts and backs, as they were.
-        EXPECT_EQ(clusters.elements.size(), 3u * 8u + 2u * 64u);
+        // 4 merged blocks of 2 x 4 elements, the emitting one's fronts and back sides apart.
+        EXPECT_EQ(clusters.elements.size(), 3u * 8u + 2u * 8u);
+        std::size_t last_front = 0, first_back = clusters.elements.size();
+        for (std::size_t s = 0; s < clusters.elements.size(); ++s) {
+            if (clusters.elements.side[s] == Elements::kFront) last_front = s;
+            if (clusters.elements.side[s] == Elements::kBack) first_back = std::min(first_back, s);
+        }
+        EXPECT_LT(last_front, first_back);
         for (std::size_t e = 0; e < build.elements.size(); ++e) {
             const std::size_t s = std::size_t(clusters.of_element[e]);
             EXPECT_EQ(clusters.elements.reflectance[s], build.elements.reflectance[e]);
