@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -20,6 +21,9 @@ constexpr double kSamePlane = 0.9999;
 /// An emitter of another polygon joins a run when its corners lie this close to the run's plane,
 /// relative to the emitter's size (besides its normal and its radiance: run_takes).
 constexpr double kPlaneGap = 1e-4;
+/// Two outline edges meeting at a turn below this sine are one straight edge: float corners of a
+/// subdivided face lie on its edge to about 1e-7 of the coordinates, a few 1e-6 of a small face's edge.
+constexpr double kStraightSine = 1e-4;
 
 /// A corner by its bits: neighbouring faces' elements meet at bit-identical points.
 using PointKey = std::array<float, 3>;
@@ -41,8 +45,53 @@ bool run_takes(const EmitterRun& run, const Emitter& first, const Emitter& sourc
     return touches;
 }
 
+glm::dvec3 point_of(const PointKey& p) { return glm::dvec3(p[0], p[1], p[2]); }
+
+/// Directed edges as straight runs: an edge's end where just one edge leaves, just this one arrives
+/// and the next goes on in a straight line (a tessellated emitter's outline, a piece per face) is
+/// not a corner, and the two pieces are one edge (the contour integral is additive along a segment).
+std::vector<std::array<glm::dvec3, 2>> straight_runs(const std::set<std::pair<PointKey, PointKey>>& edges) {
+    std::map<PointKey, std::vector<PointKey>> leaving;
+    std::map<PointKey, int> arriving;
+    for (const auto& [a, b] : edges) {
+        leaving[a].push_back(b);
+        ++arriving[b];
+    }
+    // Where the edge from a to b goes straight on through b: b's one edge onwards, else b itself.
+    auto straight_on = [&](const PointKey& a, const PointKey& b) {
+        const auto out = leaving.find(b);
+        if (arriving[b] != 1 || out == leaving.end() || out->second.size() != 1) return b;
+        const glm::dvec3 u = point_of(b) - point_of(a), v = point_of(out->second[0]) - point_of(b);
+        const bool straight =
+            glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= kStraightSine * glm::length(u) * glm::length(v);
+        return straight ? out->second[0] : b;
+    };
+    std::vector<std::array<glm::dvec3, 2>> runs;
+    std::set<std::pair<PointKey, PointKey>> inner;  // edges some run passes through, not from its start
+    for (const auto& [a, b] : edges) {
+        PointKey end = b;
+        for (PointKey from = a;;) {
+            const PointKey next = straight_on(from, end);
+            if (next == end) break;
+            inner.insert({end, next});
+            from = end;
+            end = next;
+        }
+        runs.push_back({point_of(a), point_of(end)});
+    }
+    // Runs that start inside another run are that run's tail: drop them.
+    std::vector<std::array<glm::dvec3, 2>> out;
+    auto run = runs.begin();
+    for (const auto& edge : edges) {
+        if (!inner.count(edge)) out.push_back(*run);
+        ++run;
+    }
+    return out;
+}
+
 /// The run's outline, centre and radius: the directed edges of its elements whose reverse no other
-/// element of the run has (the tiles' shared edges cancel in the contour integral).
+/// element of the run has (the tiles' shared edges cancel in the contour integral), straight runs of
+/// them joined.
 void outline(const Elements& elements, const std::vector<Emitter>& emitters, EmitterRun& run) {
     std::set<std::pair<PointKey, PointKey>> edges;
     std::size_t vertex_count = 0;
@@ -58,11 +107,10 @@ void outline(const Elements& elements, const std::vector<Emitter>& emitters, Emi
         }
     }
     run.centre /= double(std::max<std::size_t>(vertex_count, 1));
-    for (const auto& [a, b] : edges) {
-        const glm::dvec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
-        run.outline.push_back({pa, pb});
-        run.radius = std::max({run.radius, glm::length(pa - run.centre), glm::length(pb - run.centre)});
-    }
+    for (const auto& [a, b] : edges)
+        run.radius =
+            std::max({run.radius, glm::length(point_of(a) - run.centre), glm::length(point_of(b) - run.centre)});
+    run.outline = straight_runs(edges);
 }
 
 }  // namespace

@@ -36,9 +36,9 @@ struct Emitter {
 
 /// A run of emitters of one polygon side, and what its light at a point needs.
 struct EmitterRun {
-    std::size_t first, last;                          ///< its emitters
+    std::size_t first = 0, last = 0;                  ///< its emitters
     bool uniform = true;                              ///< every emitter of the run emits the same
-    std::vector<std::array<glm::dvec3, 2>> outline;   ///< directed edges no other emitter shares
+    std::vector<std::array<glm::dvec3, 2>> outline;   ///< directed edges no other emitter shares, straight runs joined
     glm::dvec3 normal{0.0}, point{0.0}, centre{0.0};  ///< its plane; the centre of its vertices
     double radius = 0.0;                              ///< from the centre to its farthest vertex
 };
