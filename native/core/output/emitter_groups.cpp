@@ -107,6 +107,9 @@ void outline(const Elements& elements, const std::vector<Emitter>& emitters, Emi
         }
     }
     run.centre /= double(std::max<std::size_t>(vertex_count, 1));
+    run.area_before.assign(1, 0.0);
+    for (std::size_t i = run.first; i < run.last; ++i)
+        run.area_before.push_back(run.area_before.back() + emitters[i].area);
     for (const auto& [a, b] : edges)
         run.radius =
             std::max({run.radius, glm::length(point_of(a) - run.centre), glm::length(point_of(b) - run.centre)});
@@ -160,17 +163,18 @@ EmitterGroups emitter_groups(const std::vector<Emitter>& emitters, const std::ve
     EmitterGroups seen;
     seen.faces.assign(emitters.size(), 0);
     for (const EmitterRun& run : runs) {
-        EmitterGroup group{run.first, run.last};
+        EmitterGroup group;
+        group.first = run.first;
+        group.last = run.last;
+        group.run = std::size_t(&run - runs.data());
         // Behind the run's plane, or in it, nothing of it faces x.
         if (glm::dot(run.normal, x - run.point) > 0.0) {
             if (run.uniform && glm::dot(n, run.centre - x) > run.radius) {  // wholly above x's tangent plane
                 double sum = 0.0;
                 for (const auto& edge : run.outline) sum += contour_term(n, edge[0] - x, edge[1] - x);
                 group.light = emitters[run.first].radiance * (std::abs(sum) / (2.0 * M_PI));
-                for (std::size_t i = run.first; i < run.last; ++i) {
-                    seen.faces[i] = 1;
-                    group.area += emitters[i].area;
-                }
+                group.area = run.area_before.back();
+                group.whole = true;
             } else {
                 for (std::size_t i = run.first; i < run.last; ++i) {
                     const Emitter& source = emitters[i];

@@ -41,19 +41,27 @@ struct EmitterRun {
     std::vector<std::array<glm::dvec3, 2>> outline;   ///< directed edges no other emitter shares, straight runs joined
     glm::dvec3 normal{0.0}, point{0.0}, centre{0.0};  ///< its plane; the centre of its vertices
     double radius = 0.0;                              ///< from the centre to its farthest vertex
+    /// Per emitter of the run and one more: the area of the emitters before it, summed in order.
+    std::vector<double> area_before;
 };
 
 /// A run of emitters seen from a point.
 struct EmitterGroup {
-    std::size_t first, last;  ///< its emitters
-    Rgb light{0.0};           ///< its exact unoccluded light at the point
-    double area = 0.0;        ///< of its elements that face the point
+    std::size_t first = 0, last = 0;  ///< its emitters
+    std::size_t run = 0;              ///< its EmitterRun
+    Rgb light{0.0};                   ///< its exact unoccluded light at the point
+    double area = 0.0;                ///< of its elements that face the point
+    /// The run emits alike and lies wholly above the point's tangent plane: every emitter faces the
+    /// point (EmitterGroups::faces is not set for them), and the cost at the point does not grow
+    /// with their count.
+    bool whole = false;
 };
 
 struct EmitterGroups {
     std::vector<EmitterGroup> groups;
-    std::vector<uint8_t> faces;  ///< per emitter: it faces the point (its factor there is positive)
-    double total = 0.0;          ///< the groups' light, summed over their largest channels
+    std::vector<uint8_t>
+        faces;           ///< per emitter of a group not whole: it faces the point (its factor there is positive)
+    double total = 0.0;  ///< the groups' light, summed over their largest channels
 };
 
 /// The emitting elements: `emitted` above zero and an area.

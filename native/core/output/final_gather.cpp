@@ -495,6 +495,7 @@ private:
         Signature signature;
         signature.word(0x6A0U).number(group_rays(groups, group)).number(group.area);
         signature.word(uint32_t(group.first)).word(uint32_t(group.last));
+        if (group.whole) return signature.word(0xA11U).value();  // every element, all alike
         const double brightest = brightest_radiance(groups, group);
         for (std::size_t i = group.first; i < group.last; ++i) {
             signature.word(groups.faces[i]);
@@ -505,6 +506,7 @@ private:
 
     /// The largest channel of the brightest of `group`'s elements that face the point.
     double brightest_radiance(const EmitterGroups& groups, const EmitterGroup& group) const {
+        if (group.whole) return max_channel(scene_.emitters[group.first].radiance);
         double brightest = 0.0;
         for (std::size_t i = group.first; i < group.last; ++i)
             if (groups.faces[i]) brightest = std::max(brightest, max_channel(scene_.emitters[i].radiance));
@@ -528,13 +530,8 @@ private:
         int clear = 0, cast = 0;
         const double brightest = brightest_radiance(groups, group);
         std::array<Vec3, 256> points;
-        for (std::size_t i = group.first; i < group.last; ++i) {
-            if (!groups.faces[i]) continue;
+        auto cast_at = [&](std::size_t i, int picks) {  // `picks` of the rays at emitter i, stratified
             const Emitter& source = scene_.emitters[i];
-            covered += source.area;
-            int picks = 0;
-            for (; next_pick < covered; next_pick += group.area / rays) ++picks;
-            if (picks == 0) continue;
             const int grid = std::clamp(int(std::lround(std::sqrt(double(picks)))), 1, 16);
             std::array<Vec3, 4> c;
             for (int k = 0; k < source.count; ++k) c[k] = Vec3(source.polygon[k]);
@@ -553,6 +550,26 @@ private:
                 ++cast;
                 seen += sample_weight * kernel;
                 if (seen_clear) visible += sample_weight * kernel;
+            }
+        };
+        const double step = group.area / rays;
+        if (group.whole) {  // the emitters the picks fall on, found among the run's sums of area
+            const std::vector<double>& before = scene_.runs[group.run].area_before;
+            for (auto end = before.begin() + 1;;) {
+                end = std::upper_bound(end, before.end(), next_pick);
+                if (end == before.end()) break;
+                int picks = 0;
+                for (covered = *end; next_pick < covered; next_pick += step) ++picks;
+                cast_at(group.first + std::size_t(end - before.begin() - 1), picks);
+                ++end;
+            }
+        } else {
+            for (std::size_t i = group.first; i < group.last; ++i) {
+                if (!groups.faces[i]) continue;
+                covered += scene_.emitters[i].area;
+                int picks = 0;
+                for (; next_pick < covered; next_pick += step) ++picks;
+                if (picks > 0) cast_at(i, picks);
             }
         }
         return seen > 0.0 ? visible / seen : cast > 0 ? double(clear) / cast : 1.0;
