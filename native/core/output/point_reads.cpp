@@ -85,6 +85,11 @@ Folded& add(TermIndex& index, Source source, std::size_t value, double weight, c
     return term;
 }
 
+/// Whether element e may have an emission of its own: an emitting polygon's (it has a twin) or a
+/// lamp's. Whether a face emits is part of the geometry a fold is kept for (a face that starts or
+/// stops emitting makes a new one), so any other element's emission stays 0 and its term is left out.
+bool may_emit(const Elements& elements, std::size_t e) { return elements.has_twin(e) || !elements.blocks(e); }
+
 /// Adds one front hit's reads: the field's corner slots (or a back side's solved value), the wedge
 /// tables' values, less its emission; the slots read right at a seam (`seam`) also as such.
 void fold_front_hit(const Elements& elements, const CornerWedges* wedges, const hr::Visibility::Hit& hit, bool seam,
@@ -105,7 +110,7 @@ void fold_front_hit(const Elements& elements, const CornerWedges* wedges, const 
         wedges->terms(elements, h, hit.u, hit.v, table);
         for (const auto& [entry, weight] : table) add(index, Source::Wedge, std::size_t(entry), weight, ray);
     }
-    add(index, Source::Emitted, h, -1.0, ray);
+    if (may_emit(elements, h)) add(index, Source::Emitted, h, -1.0, ray);
 }
 
 }  // namespace

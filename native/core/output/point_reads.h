@@ -35,7 +35,7 @@ struct PointReads {
         FieldSlot = 0,     ///< the field at slot 4 e + k (the element's corner colours)
         BackRadiance = 1,  ///< an emitter's back side's solved radiance, per element
         Wedge = 2,         ///< a wedge table's value (CornerWedges::reflected_entry)
-        Emitted = 3,       ///< an element's own emission (taken away: weight -1 a ray)
+        Emitted = 3,       ///< an element's own emission (taken away: weight -1 a ray), of elements that may emit
     };
     /// A value read and its weights, summed over the rays in double precision and kept in single:
     /// 12 bytes a term, where a kept hit takes 16. The index has 30 bits: a scene's elements (at
