@@ -357,7 +357,7 @@ private:
         GatherHits* hits = scene_.kept.hits;
         if (hits != nullptr)
             if (const PointReads* kept = hits->find_reads(key)) return *kept;
-        own = fold_reads(elements_, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients},
+        own = fold_reads(elements_, scene_.emitted, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients},
                          trace_rays(origin, normal, seed));
         if (hits != nullptr)
             if (const PointReads* kept = hits->record_reads(key, own)) return *kept;

@@ -85,15 +85,18 @@ Folded& add(TermIndex& index, Source source, std::size_t value, double weight, c
     return term;
 }
 
-/// Whether element e may have an emission of its own: an emitting polygon's (it has a twin) or a
-/// lamp's. Whether a face emits is part of the geometry a fold is kept for (a face that starts or
-/// stops emitting makes a new one), so any other element's emission stays 0 and its term is left out.
-bool may_emit(const Elements& elements, std::size_t e) { return elements.has_twin(e) || !elements.blocks(e); }
+/// Whether element e may have an emission of its own: an emitting polygon's (it has a twin), a
+/// lamp's, or one that emits now (`emitted`). Whether a face emits is part of the geometry a fold is
+/// kept for (a face that starts or stops emitting makes a new one), so any other element's emission
+/// stays 0 and its term is left out.
+bool may_emit(const Elements& elements, const std::vector<Rgb>& emitted, std::size_t e) {
+    return elements.has_twin(e) || !elements.blocks(e) || max_channel(emitted[e]) > 0.0;
+}
 
 /// Adds one front hit's reads: the field's corner slots (or a back side's solved value), the wedge
 /// tables' values, less its emission; the slots read right at a seam (`seam`) also as such.
-void fold_front_hit(const Elements& elements, const CornerWedges* wedges, const hr::Visibility::Hit& hit, bool seam,
-                    const RayWeights& ray, TermIndex& index) {
+void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, const CornerWedges* wedges,
+                    const hr::Visibility::Hit& hit, bool seam, const RayWeights& ray, TermIndex& index) {
     const std::size_t h = std::size_t(hit.patch);
     if (elements.is_back(h)) {
         add(index, Source::BackRadiance, h, 1.0, ray);
@@ -110,7 +113,7 @@ void fold_front_hit(const Elements& elements, const CornerWedges* wedges, const 
         wedges->terms(elements, h, hit.u, hit.v, table);
         for (const auto& [entry, weight] : table) add(index, Source::Wedge, std::size_t(entry), weight, ray);
     }
-    if (may_emit(elements, h)) add(index, Source::Emitted, h, -1.0, ray);
+    if (may_emit(elements, emitted, h)) add(index, Source::Emitted, h, -1.0, ray);
 }
 
 }  // namespace
@@ -121,8 +124,8 @@ std::size_t PointReads::bytes() const {
            sizeof(PointReads);
 }
 
-PointReads fold_reads(const Elements& elements, const CornerWedges* wedges, const RayGrid& grid,
-                      const std::vector<RayHit>& hits) {
+PointReads fold_reads(const Elements& elements, const std::vector<Rgb>& emitted, const CornerWedges* wedges,
+                      const RayGrid& grid, const std::vector<RayHit>& hits) {
     PointReads reads;
     reads.rays = int(hits.size());
     std::vector<double> inverse(hits.size(), 0.0);
@@ -142,7 +145,7 @@ PointReads fold_reads(const Elements& elements, const CornerWedges* wedges, cons
         reads.at_seam += seam;
         const RayWeights ray{half_sign(int(i), grid.grid), grid.gradients ? &gradient.rotation[i] : nullptr,
                              grid.gradients ? &gradient.translation[i] : nullptr};
-        fold_front_hit(elements, wedges, hit, seam && !elements.is_back(std::size_t(hit.patch)), ray, index);
+        fold_front_hit(elements, emitted, wedges, hit, seam && !elements.is_back(std::size_t(hit.patch)), ray, index);
     }
     index.finish(reads, grid.gradients);
     reads.back_distances.shrink_to_fit();

@@ -79,9 +79,10 @@ struct RayGrid {
     bool gradients = false;  ///< fold the gradients' weights too
 };
 
-/// `hits` (ray i in the order cast) folded into weights; `wedges` may be null (no tables read).
-PointReads fold_reads(const Elements& elements, const CornerWedges* wedges, const RayGrid& grid,
-                      const std::vector<RayHit>& hits);
+/// `hits` (ray i in the order cast) folded into weights; `emitted`: each element's own emission
+/// (which elements may emit); `wedges` may be null (no tables read).
+PointReads fold_reads(const Elements& elements, const std::vector<Rgb>& emitted, const CornerWedges* wedges,
+                      const RayGrid& grid, const std::vector<RayHit>& hits);
 
 /// The values a point's reads are evaluated on.
 struct ReadValues {

@@ -96,7 +96,7 @@ TEST(PointReads, FoldedReadsGiveWhatTheHitsGiveForAnyValues) {
         ray.hit.distance = float(pick < 0.2 ? 0.001 : 0.1 + uniform(random));
         ray.front = pick > 0.1;
     }
-    const PointReads reads = fold_reads(elements, &wedges, grid, hits);
+    const PointReads reads = fold_reads(elements, elements.emission, &wedges, grid, hits);
     EXPECT_LT(reads.terms.size(), hits.size() / 4);  // many rays, few values
 
     for (int lighting = 0; lighting < 3; ++lighting) {  // one fold, any lighting
