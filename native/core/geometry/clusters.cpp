@@ -116,13 +116,6 @@ EdgeMap edges_of(const std::vector<Region>& regions) {
     return map;
 }
 
-/// Whether corner b lies on the straight line from a to c, between them.
-bool straight(const Vec3& a, const Vec3& b, const Vec3& c) {
-    const DVec3 u = DVec3(b) - DVec3(a), v = DVec3(c) - DVec3(b);
-    const double lengths = glm::length(u) * glm::length(v);
-    return glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= kStraightSine * lengths;
-}
-
 /// An outline and its edges' cut flags (Region).
 struct Outline {
     std::vector<Vec3> corners;
@@ -135,7 +128,7 @@ Outline without_straight_corners(Outline outline) {
     std::vector<Vec3>& p = outline.corners;
     for (std::size_t k = 0; k < p.size() && p.size() > 3;) {
         const std::size_t n = p.size(), before = (k + n - 1) % n;
-        if (!straight(p[before], p[k], p[(k + 1) % n])) {
+        if (!detail::straight(DVec3(p[before]), DVec3(p[k]), DVec3(p[(k + 1) % n]), kStraightSine)) {
             ++k;
             continue;
         }

@@ -15,6 +15,12 @@ DVec3 newell(const std::vector<DVec3>& p) {
     return n;
 }
 
+bool straight(const DVec3& a, const DVec3& b, const DVec3& c, double sine) {
+    const DVec3 u = b - a, v = c - b;
+    const double lengths = glm::length(u) * glm::length(v);
+    return glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= sine * lengths;
+}
+
 bool is_convex(const std::vector<DVec3>& p, const DVec3& normal) {
     for (std::size_t i = 0; i < p.size(); ++i) {
         const DVec3 &a = p[i], &b = p[(i + 1) % p.size()], &c = p[(i + 2) % p.size()];

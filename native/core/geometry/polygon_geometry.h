@@ -14,6 +14,10 @@ using DVec3 = glm::dvec3;
 /// Twice the area vector of a polygon (Newell's method): its direction is the normal.
 DVec3 newell(const std::vector<DVec3>& p);
 
+/// Whether corner b lies on the straight line from a to c, between them: the turn at b has a sine
+/// below `sine`.
+bool straight(const DVec3& a, const DVec3& b, const DVec3& c, double sine);
+
 /// Whether every corner turns left about `normal` (strictly: collinear corners are not convex).
 bool is_convex(const std::vector<DVec3>& p, const DVec3& normal);
 

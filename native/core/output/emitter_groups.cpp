@@ -2,6 +2,7 @@
 /// @brief Emitting elements grouped by polygon side, and their exact light at a point (emitter_groups.h).
 #include "output/emitter_groups.h"
 
+#include "geometry/polygon_geometry.h"
 #include "transport/near_field.h"
 
 #include <glm/geometric.hpp>
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -47,46 +49,35 @@ bool run_takes(const EmitterRun& run, const Emitter& first, const Emitter& sourc
 
 glm::dvec3 point_of(const PointKey& p) { return glm::dvec3(p[0], p[1], p[2]); }
 
-/// Directed edges as straight runs: an edge's end where just one edge leaves, just this one arrives
-/// and the next goes on in a straight line (a tessellated emitter's outline, a piece per face) is
-/// not a corner, and the two pieces are one edge (the contour integral is additive along a segment).
+/// Directed edges as straight runs: where just one edge arrives at a point, just one leaves, and
+/// the two go on in a straight line (a tessellated emitter's outline, a piece per face), the point
+/// is no corner and the two pieces are one edge (the contour integral is additive along a segment).
 std::vector<std::array<glm::dvec3, 2>> straight_runs(const std::set<std::pair<PointKey, PointKey>>& edges) {
-    std::map<PointKey, std::vector<PointKey>> leaving;
-    std::map<PointKey, int> arriving;
+    std::map<PointKey, std::vector<PointKey>> leaving, arriving;
     for (const auto& [a, b] : edges) {
         leaving[a].push_back(b);
-        ++arriving[b];
+        arriving[b].push_back(a);
     }
-    // Where the edge from a to b goes straight on through b: b's one edge onwards, else b itself.
-    auto straight_on = [&](const PointKey& a, const PointKey& b) {
-        const auto out = leaving.find(b);
-        if (arriving[b] != 1 || out == leaving.end() || out->second.size() != 1) return b;
-        const glm::dvec3 u = point_of(b) - point_of(a), v = point_of(out->second[0]) - point_of(b);
-        const bool straight =
-            glm::dot(u, v) > 0.0 && glm::length(glm::cross(u, v)) <= kStraightSine * glm::length(u) * glm::length(v);
-        return straight ? out->second[0] : b;
+    // The point after b when the edge from a to b goes straight on through it.
+    auto straight_on = [&](const PointKey& a, const PointKey& b) -> std::optional<PointKey> {
+        const std::vector<PointKey>& in = arriving[b];
+        const std::vector<PointKey>& out = leaving[b];
+        if (in.size() != 1 || out.size() != 1 || !straight(point_of(a), point_of(b), point_of(out[0]), kStraightSine))
+            return std::nullopt;
+        return out[0];
     };
     std::vector<std::array<glm::dvec3, 2>> runs;
-    std::set<std::pair<PointKey, PointKey>> inner;  // edges some run passes through, not from its start
     for (const auto& [a, b] : edges) {
-        PointKey end = b;
-        for (PointKey from = a;;) {
-            const PointKey next = straight_on(from, end);
-            if (next == end) break;
-            inner.insert({end, next});
+        const std::vector<PointKey>& in = arriving[a];
+        if (in.size() == 1 && straight_on(in[0], a)) continue;  // inside a run that starts before a
+        PointKey from = a, end = b;
+        while (const std::optional<PointKey> next = straight_on(from, end)) {
             from = end;
-            end = next;
+            end = *next;
         }
         runs.push_back({point_of(a), point_of(end)});
     }
-    // Runs that start inside another run are that run's tail: drop them.
-    std::vector<std::array<glm::dvec3, 2>> out;
-    auto run = runs.begin();
-    for (const auto& edge : edges) {
-        if (!inner.count(edge)) out.push_back(*run);
-        ++run;
-    }
-    return out;
+    return runs;
 }
 
 /// The run's outline, centre and radius: the directed edges of its elements whose reverse no other

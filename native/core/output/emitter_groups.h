@@ -59,8 +59,8 @@ struct EmitterGroup {
 
 struct EmitterGroups {
     std::vector<EmitterGroup> groups;
-    std::vector<uint8_t>
-        faces;           ///< per emitter of a group not whole: it faces the point (its factor there is positive)
+    /// Per emitter of a group not whole: it faces the point (its factor there is positive).
+    std::vector<uint8_t> faces;
     double total = 0.0;  ///< the groups' light, summed over their largest channels
 };
 

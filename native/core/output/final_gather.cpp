@@ -525,7 +525,7 @@ private:
         if (!(weight > 0.0)) return 0.0;
         const double rays = group_rays(groups, group);
         uint32_t pick_seed = mix_seed(seed, uint32_t(scene_.emitters[group.first].element) ^ 0x9A0BU);
-        double next_pick = next_jitter(pick_seed) * group.area / rays, covered = 0.0;
+        double next_pick = next_jitter(pick_seed) * group.area / rays;
         double visible = 0.0, seen = 0.0;
         int clear = 0, cast = 0;
         const double brightest = brightest_radiance(groups, group);
@@ -559,11 +559,12 @@ private:
                 end = std::upper_bound(end, before.end(), next_pick);
                 if (end == before.end()) break;
                 int picks = 0;
-                for (covered = *end; next_pick < covered; next_pick += step) ++picks;
+                for (; next_pick < *end; next_pick += step) ++picks;
                 cast_at(group.first + std::size_t(end - before.begin() - 1), picks);
                 ++end;
             }
         } else {
+            double covered = 0.0;
             for (std::size_t i = group.first; i < group.last; ++i) {
                 if (!groups.faces[i]) continue;
                 covered += scene_.emitters[i].area;
