@@ -65,7 +65,7 @@ UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& 
     UniformTransport transport;
     auto start = Clock::now();
     transport.build = uniform_elements(input, settings, progress);
-    transport.clusters = uniform_clusters(transport.build.elements, input, settings);
+    transport.clusters = uniform_clusters(transport.build, input, settings);
     transport.emitted = transport.build.elements.emission;
     transport.seconds_elements = seconds_since(start);
     transport.matrix_stored = stores_matrix(transport.solve_elements(), settings);

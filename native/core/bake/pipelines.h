@@ -14,13 +14,15 @@
 
 namespace radiosity::detail {
 
-/// The uniform bake's elements: at most `element_size`, cut along intersections and contacts.
-/// Progress phases as build_elements'.
+/// The uniform bake's elements: at most `element_size`, or the distance at which a polygon sees other
+/// surfaces where that is less (visibility/sizes_by_sight.h: built once more with those sizes), cut
+/// along intersections and contacts. Progress phases as build_elements'.
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress = {});
 
-/// The uniform bake's solve elements over its output elements `elements` (geometry/clusters.h):
-/// small coplanar ones merged up to `element_size` when BakeSettings::merge_elements, else none.
-Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings);
+/// The uniform bake's solve elements over its output elements `build` (geometry/clusters.h): small
+/// coplanar ones merged up to `element_size` (or their polygons' own sizes) when
+/// BakeSettings::merge_elements, else none.
+Clusters uniform_clusters(const BuildResult& build, const SceneInput& input, const BakeSettings& settings);
 
 /// The media bake's elements: at most `element_size`, cut along intersections. The zonal exchange
 /// has no direct path for lamps (small_emitters.h): their quads stay in the factors, lit and

@@ -7,6 +7,7 @@
 #include "bake/pipelines.h"
 #include "visibility/resolution.h"
 #include "visibility/sight_distance.h"
+#include "visibility/sizes_by_sight.h"
 
 #include <utility>
 
@@ -33,7 +34,7 @@ namespace detail {
 
 BakeResult as_bake_result(HierarchyResult&& hierarchy) {
     BakeResult result;
-    result.build = BuildResult{std::move(hierarchy.output), std::move(hierarchy.build.skipped)};
+    result.build = BuildResult{std::move(hierarchy.output), std::move(hierarchy.build.skipped), {}};
     result.solve.radiance = std::move(hierarchy.output_radiance);
     result.solve.iterations = hierarchy.stats.iterations;
     result.solve.residual = hierarchy.residual;
@@ -53,13 +54,19 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
 }
 
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
-    return build_elements(input, settings.element_size, settings.limits, progress);
+    BuildResult build = build_elements(input, settings.element_size, settings.limits, progress);
+    if (!(settings.element_size > 0.0f)) return build;
+    ElementLimits limits = settings.limits;
+    limits.polygon_edge = sizes_by_sight(build.elements, input.face_count, settings.element_size);
+    if (!any_size(limits.polygon_edge)) return build;
+    return build_elements(input, settings.element_size, limits);  // as fast as the first: its progress is told
 }
 
-Clusters uniform_clusters(const Elements& elements, const SceneInput& input, const BakeSettings& settings) {
+Clusters uniform_clusters(const BuildResult& build, const SceneInput& input, const BakeSettings& settings) {
     std::vector<Vec3> lamps;
     for (const PointLight& lamp : settings.lights.points) lamps.push_back(lamp.position);
-    return cluster_elements(elements, input, settings.merge_elements ? settings.element_size : 0.0f, lamps);
+    return cluster_elements(build.elements, input, settings.merge_elements ? settings.element_size : 0.0f, lamps,
+                            build.polygon_edge);
 }
 
 BuildResult media_elements(const SceneInput& input, const BakeSettings& settings) {
@@ -118,7 +125,7 @@ BakePlan plan(const SceneInput& input, const BakeSettings& settings) {
         plan.matrix_stored = true;
         return plan;
     }
-    const Clusters clusters = detail::uniform_clusters(plan.build.elements, input, settings);
+    const Clusters clusters = detail::uniform_clusters(plan.build, input, settings);
     const Elements& solved = clusters.merged() ? clusters.elements : plan.build.elements;
     plan.solve_element_area = solved.area;
     plan.solve_element_polygon = solved.polygon;

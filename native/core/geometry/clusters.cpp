@@ -44,6 +44,7 @@ struct Region {
     Rgb reflectance{0.0}, emission{0.0};
     uint8_t side = Elements::kOneSided;  ///< an emitting polygon's fronts and back sides merge apart
     int32_t lattice = 0;                 ///< its plane's Lattice
+    double size = 0.0;                   ///< the longest edge it may grow to: its members' polygons' least
     bool alive = true;
 };
 
@@ -214,7 +215,8 @@ std::vector<Lattice> plane_lattices(std::vector<Region>& regions, double size) {
 
 /// One region per mergeable element; `region_of` -1 for the others.
 std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, const std::vector<Vec3>& lamps,
-                                   double near, std::vector<int32_t>& region_of) {
+                                   double near, double size, const std::vector<float>& polygon_edge,
+                                   std::vector<int32_t>& region_of) {
     std::vector<Region> regions;
     region_of.assign(elements.size(), -1);
     for (std::size_t e = 0; e < elements.size(); ++e) {
@@ -231,6 +233,10 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
         region.reflectance = elements.reflectance[e];
         region.emission = elements.emission[e];
         region.side = elements.side.empty() ? Elements::kOneSided : elements.side[e];
+        const std::size_t polygon = std::size_t(elements.polygon[e]);
+        region.size = polygon < polygon_edge.size() && polygon_edge[polygon] > 0.0f
+                          ? std::min(size, double(polygon_edge[polygon]))
+                          : size;
         region_of[e] = int32_t(regions.size());
         regions.push_back(std::move(region));
     }
@@ -289,7 +295,8 @@ Partner best_partner(const Round& round, std::size_t r) {
         const std::optional<Outline> outline = joined_outline(a, int(k), b, found->second.corner);
         if (!outline) continue;
         const double longest = longest_edge(outline->corners);
-        if (longest > round.size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
+        const double size = std::min(a.size, b.size);
+        if (longest > size * (1.0 + kSizeSlack) || (best.region >= 0 && longest >= best.longest)) continue;
         best = {int32_t(n), *outline, longest};
     }
     return best;
@@ -307,6 +314,7 @@ bool merge_round(std::vector<Region>& regions, const std::vector<Lattice>& latti
         a.corners = std::move(partner.outline.corners);
         a.cut = std::move(partner.outline.cut);
         a.members.insert(a.members.end(), b.members.begin(), b.members.end());
+        a.size = std::min(a.size, b.size);
         b.alive = false;
         round.taken[r] = round.taken[std::size_t(partner.region)] = 1;
         merged = true;
@@ -398,11 +406,12 @@ private:
 }  // namespace
 
 Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size,
-                          const std::vector<Vec3>& lamps) {
+                          const std::vector<Vec3>& lamps, const std::vector<float>& polygon_edge) {
     Clusters clusters;
     if (!(element_size > 0.0f)) return clusters;
     std::vector<int32_t> region_of;
-    std::vector<Region> regions = single_regions(output, input, lamps, 2.0 * double(element_size), region_of);
+    std::vector<Region> regions =
+        single_regions(output, input, lamps, 2.0 * double(element_size), double(element_size), polygon_edge, region_of);
     merge_regions(regions, double(element_size));
     bool any = false;
     for (const Region& region : regions) {

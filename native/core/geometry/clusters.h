@@ -45,9 +45,10 @@ struct Clusters {
 /// edges are at most `element_size` metres (0: nothing merges). `input` gives each element's
 /// material and whether its face is textured. Elements within twice `element_size` of a point
 /// lamp at one of `lamps` keep their own: beside a lamp its light and what the geometry around it
-/// lets through change within a merged element's size (a lamp's fixture).
+/// lets through change within a merged element's size (a lamp's fixture). `polygon_edge`: per input
+/// polygon, a smaller size its elements merge up to (BuildResult::polygon_edge; 0: `element_size`).
 Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size,
-                          const std::vector<Vec3>& lamps = {});
+                          const std::vector<Vec3>& lamps = {}, const std::vector<float>& polygon_edge = {});
 
 /// `per_solve` (one value per solve element) read by every output element; `per_solve` itself
 /// when nothing merged.

@@ -496,11 +496,15 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
+        const float edge = f < limits.polygon_edge.size() && limits.polygon_edge[f] > 0.0f &&
+                                   (max_edge == 0.0f || limits.polygon_edge[f] < max_edge)
+                               ? limits.polygon_edge[f]
+                               : max_edge;
         const auto cut_end =
             std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
             const std::vector<int32_t> corners =
-                subdivide(out, p, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
+                subdivide(out, p, normal, f, rho, emitted, emits_behind, edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -509,7 +513,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
             const std::vector<int32_t> corners =
-                subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, max_edge, limits, back_sides);
+                subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }
@@ -523,6 +527,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     }
     detail::report_progress(progress, "elements", in.face_count, in.face_count);
     if (in.textures) detail::texture_elements(in, out, progress);
+    result.polygon_edge = limits.polygon_edge;
     return result;
 }
 

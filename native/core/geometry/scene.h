@@ -94,6 +94,9 @@ struct CornerColors {
 struct BuildResult {
     Elements elements;
     std::vector<SkippedPolygon> skipped;  ///< never used silently: callers report these
+    /// Per input polygon, the longest edge it was cut to where smaller than the bake's element size
+    /// (ElementLimits::polygon_edge; 0 elsewhere, empty: none).
+    std::vector<float> polygon_edge;
 };
 
 /// Guards of the subdivision against input it cannot serve.
@@ -123,6 +126,9 @@ struct ElementLimits {
     /// the edge of the light its back side casts. Off here, on in the uniform and hierarchical
     /// bakes (BakeSettings::limits, HierarchySettings::limits).
     bool cut_contacts = false;
+    /// Per input polygon, a longest edge below build_elements' max_edge for its elements (0: max_edge
+    /// alone; visibility/sizes_by_sight.h). Empty: none.
+    std::vector<float> polygon_edge;
 
     /// These limits with contact cuts on.
     ElementLimits with_contacts() const {

@@ -1,0 +1,102 @@
+/// @file sizes_by_sight.cpp
+/// @brief Element sizes from the distance each polygon sees other surfaces at (sizes_by_sight.h).
+#include "visibility/sizes_by_sight.h"
+
+#include "common/parallel_rows.h"
+#include "common/stratified.h"
+#include "visibility/ray_tracer.h"
+#include "visibility/shadow_ray.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace radiosity {
+namespace {
+
+constexpr int kElementsPerPolygon = 8;
+constexpr int kRaysAlong = 4;  ///< 4 x 4 stratified rays from each
+
+double longest_edge(const Elements& elements, std::size_t e) {
+    double longest = 0.0;
+    const int count = elements.corner_count(e);
+    for (int k = 0; k < count; ++k)
+        longest = std::max(longest, double(glm::length(elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] -
+                                                       elements.vertices[std::size_t(elements.corners[e][k])])));
+    return longest;
+}
+
+/// The harmonic mean of the distances at which element e's rays meet fronts; 0 where none does
+/// or where most of them meet a back face nearer than the element's size (it lies under other
+/// geometry: a level's floor running on under a wall).
+double harmonic_distance(const Elements& elements, std::size_t e, const hr::Visibility& rays) {
+    const glm::dvec3 n(elements.normal[e]);
+    glm::dvec3 t, b;
+    detail::tangent_frame(n, t, b);
+    const Vec3 origin = elements.centre[e] + rays.gap() * elements.normal[e];
+    const float near = std::sqrt(elements.area[e]);
+    double inverse = 0.0;
+    int fronts = 0, backs = 0;
+    for (int r = 0; r < kRaysAlong * kRaysAlong; ++r) {
+        const double u = (double(r % kRaysAlong) + 0.5) / kRaysAlong, v = (double(r / kRaysAlong) + 0.5) / kRaysAlong;
+        const Vec3 direction(detail::cosine_direction(n, t, b, u, v));
+        const hr::Visibility::Hit hit = rays.first_hit(origin, direction, 0.0f);
+        if (hit.patch < 0 || !(hit.distance > 0.0f)) continue;
+        if (glm::dot(direction, elements.normal[std::size_t(hit.patch)]) >= 0.0f) {
+            backs += hit.distance < near;
+            continue;
+        }
+        inverse += 1.0 / double(hit.distance);
+        ++fronts;
+    }
+    if (2 * backs > kRaysAlong * kRaysAlong || fronts == 0) return 0.0;
+    return double(fronts) / inverse;
+}
+
+/// The median over up to kElementsPerPolygon of a polygon's elements of their harmonic_distance (0:
+/// none counts): a polygon narrow only beside a pillar is not narrow.
+double polygon_distance(const Elements& elements, const std::vector<int32_t>& polygon, const hr::Visibility& rays) {
+    std::vector<double> distances;
+    const std::size_t step = std::max<std::size_t>(1, polygon.size() / kElementsPerPolygon);
+    for (std::size_t i = 0; i < polygon.size(); i += step) {
+        const double distance = harmonic_distance(elements, std::size_t(polygon[i]), rays);
+        if (distance > 0.0) distances.push_back(distance);
+    }
+    if (distances.empty()) return 0.0;
+    std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+    return distances[distances.size() / 2];
+}
+
+}  // namespace
+
+std::vector<float> sizes_by_sight(const Elements& elements, std::size_t polygons, float element_size) {
+    std::vector<float> sizes(polygons, 0.0f);
+    if (!(element_size > 0.0f) || elements.size() == 0) return sizes;
+    const double smallest = double(element_size) / 8.0;
+    std::vector<std::vector<int32_t>> of_polygon(polygons);
+    std::vector<uint8_t> worth(polygons, 0);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const std::size_t p = std::size_t(elements.polygon[e]);
+        if (elements.has_twin(e) || !elements.blocks(e) || !(elements.area[e] > 0.0f)) {
+            worth[p] = 2;  // an emitter's or a lamp's: left as it is
+            continue;
+        }
+        of_polygon[p].push_back(int32_t(e));
+        if (worth[p] == 0 && longest_edge(elements, e) > smallest) worth[p] = 1;
+    }
+    const hr::Visibility rays(elements.vertices, detail::blocking_corners(elements), scene_diagonal(elements.vertices));
+    detail::parallel_rows("element sizes", polygons, 16, 0, {}, [&](std::size_t p) {
+        if (worth[p] != 1) return true;
+        const double distance = polygon_distance(elements, of_polygon[p], rays);
+        if (distance > 0.0 && distance < 0.25 * double(element_size)) sizes[p] = float(std::max(distance, smallest));
+        return true;
+    });
+    return sizes;
+}
+
+bool any_size(const std::vector<float>& sizes) {
+    return std::any_of(sizes.begin(), sizes.end(), [](float size) { return size > 0.0f; });
+}
+
+}  // namespace radiosity
