@@ -17,6 +17,9 @@ namespace {
 
 constexpr int kElementsPerPolygon = 8;
 constexpr int kRaysAlong = 4;  ///< 4 x 4 stratified rays from each
+constexpr double kLargest = 0.25;      ///< of the element size: distances beyond it keep the element size
+constexpr double kMoreElements = 0.5;  ///< of the elements' count: what the cuts may add,
+constexpr double kMoreAtLeast = 2048;  ///< or this many in a small scene
 
 double longest_edge(const Elements& elements, std::size_t e) {
     double longest = 0.0;
@@ -68,6 +71,34 @@ double polygon_distance(const Elements& elements, const std::vector<int32_t>& po
     return distances[distances.size() / 2];
 }
 
+/// The least size the polygons may be cut to, from `smallest` up, so that the elements they gain
+/// (a polygon's area over its size squared, less the elements it has) stay within kMoreElements of
+/// the elements' count (kMoreAtLeast in a small scene): a slab 5 mm over a floor would otherwise be cut into 5 mm elements, which
+/// the near-field correction (transport/near_field.h) serves at a fraction of the cost.
+double least_size(const Elements& elements, const std::vector<std::vector<int32_t>>& of_polygon,
+                  const std::vector<double>& distance, double smallest, double largest) {
+    std::vector<double> area(of_polygon.size(), 0.0);
+    for (std::size_t p = 0; p < of_polygon.size(); ++p)
+        for (const int32_t e : of_polygon[p]) area[p] += double(elements.area[std::size_t(e)]);
+    auto gained = [&](double floor) {
+        double more = 0.0;
+        for (std::size_t p = 0; p < of_polygon.size(); ++p) {
+            const double size = std::max(distance[p], floor);
+            if (distance[p] > 0.0 && size < largest)
+                more += std::max(0.0, area[p] / (size * size) - double(of_polygon[p].size()));
+        }
+        return more;
+    };
+    const double budget = std::max(kMoreElements * double(elements.size()), kMoreAtLeast);
+    if (gained(smallest) <= budget) return smallest;
+    double lo = smallest, hi = largest;
+    for (int i = 0; i < 40; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (gained(mid) <= budget ? hi : lo) = mid;
+    }
+    return hi;
+}
+
 }  // namespace
 
 std::vector<float> sizes_by_sight(const Elements& elements, std::size_t polygons, float element_size) {
@@ -86,12 +117,15 @@ std::vector<float> sizes_by_sight(const Elements& elements, std::size_t polygons
         if (worth[p] == 0 && longest_edge(elements, e) > smallest) worth[p] = 1;
     }
     const hr::Visibility rays(elements.vertices, detail::blocking_corners(elements), scene_diagonal(elements.vertices));
+    std::vector<double> distance(polygons, 0.0);
     detail::parallel_rows("element sizes", polygons, 16, 0, {}, [&](std::size_t p) {
-        if (worth[p] != 1) return true;
-        const double distance = polygon_distance(elements, of_polygon[p], rays);
-        if (distance > 0.0 && distance < 0.25 * double(element_size)) sizes[p] = float(std::max(distance, smallest));
+        if (worth[p] == 1) distance[p] = polygon_distance(elements, of_polygon[p], rays);
         return true;
     });
+    const double floor = least_size(elements, of_polygon, distance, smallest, kLargest * double(element_size));
+    for (std::size_t p = 0; p < polygons; ++p)
+        if (distance[p] > 0.0 && std::max(distance[p], floor) < kLargest * double(element_size))
+            sizes[p] = float(std::max(distance[p], floor));
     return sizes;
 }
 
