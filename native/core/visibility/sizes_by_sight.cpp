@@ -16,7 +16,7 @@ namespace radiosity {
 namespace {
 
 constexpr int kElementsPerPolygon = 8;
-constexpr int kRaysAlong = 4;  ///< 4 x 4 stratified rays from each
+constexpr int kRaysAlong = 4;          ///< 4 x 4 stratified rays from each
 constexpr double kLargest = 0.25;      ///< of the element size: distances beyond it keep the element size
 constexpr double kMoreElements = 0.5;  ///< of the elements' count: what the cuts may add,
 constexpr double kMoreAtLeast = 2048;  ///< or this many in a small scene
@@ -25,8 +25,9 @@ double longest_edge(const Elements& elements, std::size_t e) {
     double longest = 0.0;
     const int count = elements.corner_count(e);
     for (int k = 0; k < count; ++k)
-        longest = std::max(longest, double(glm::length(elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] -
-                                                       elements.vertices[std::size_t(elements.corners[e][k])])));
+        longest =
+            std::max(longest, double(glm::length(elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])] -
+                                                 elements.vertices[std::size_t(elements.corners[e][k])])));
     return longest;
 }
 
@@ -71,10 +72,11 @@ double polygon_distance(const Elements& elements, const std::vector<int32_t>& po
     return distances[distances.size() / 2];
 }
 
-/// The least size the polygons may be cut to, from `smallest` up, so that the elements they gain
-/// (a polygon's area over its size squared, less the elements it has) stay within kMoreElements of
-/// the elements' count (kMoreAtLeast in a small scene): a slab 5 mm over a floor would otherwise be cut into 5 mm elements, which
-/// the near-field correction (transport/near_field.h) serves at a fraction of the cost.
+/// The least size the polygons may be cut to, from `smallest` up, so that the elements they gain (a
+/// polygon's area over its size squared, less the elements it has) stay within kMoreElements of the
+/// elements' count (kMoreAtLeast in a small scene): a slab 5 mm over a floor would otherwise be cut
+/// into 5 mm elements, which the near-field correction (transport/near_field.h) serves at a
+/// fraction of the cost.
 double least_size(const Elements& elements, const std::vector<std::vector<int32_t>>& of_polygon,
                   const std::vector<double>& distance, double smallest, double largest) {
     std::vector<double> area(of_polygon.size(), 0.0);

@@ -27,8 +27,8 @@ const Rgb kGrey(0.7);
 /// Polygons: 0, 1 the walls, 2 the floor, 3, 4 the ends, 5 the bridge, 6 the emitter, 7, 8 the ground.
 test::SceneArrays trench(bool ground) {
     test::SceneArrays scene;
-    scene.add_quad({0, 0, -0.8f}, {0, 6, -0.8f}, {0, 6, 0}, {0, 0, 0}, kGrey);              // wall, +x
-    scene.add_quad({0.4f, 0, -0.8f}, {0.4f, 0, 0}, {0.4f, 6, 0}, {0.4f, 6, -0.8f}, kGrey);  // wall, -x
+    scene.add_quad({0, 0, -0.8f}, {0, 6, -0.8f}, {0, 6, 0}, {0, 0, 0}, kGrey);                // wall, +x
+    scene.add_quad({0.4f, 0, -0.8f}, {0.4f, 0, 0}, {0.4f, 6, 0}, {0.4f, 6, -0.8f}, kGrey);    // wall, -x
     scene.add_quad({0, 0, -0.8f}, {0.4f, 0, -0.8f}, {0.4f, 6, -0.8f}, {0, 6, -0.8f}, kGrey);  // floor
     scene.add_quad({0, 0, -0.8f}, {0, 0, 0}, {0.4f, 0, 0}, {0.4f, 0, -0.8f}, kGrey);          // end, +y
     scene.add_quad({0, 6, -0.8f}, {0.4f, 6, -0.8f}, {0.4f, 6, 0}, {0, 6, 0}, kGrey);          // end, -y
@@ -91,15 +91,16 @@ TEST(SizesBySight, TheCoveredEndOfATrenchAgreesWithTheDenseSolve) {
     limits.polygon_edge = sizes_by_sight(coarse, input.face_count, kElementSize);
     const Elements sized = build_elements(input, kElementSize, limits).elements;
     const std::vector<Rgb> coarse_light = dense_light(coarse), sized_light = dense_light(sized);
-    for (const auto& [polygon, name] : {std::pair<int32_t, const char*>{2, "floor"}, {5, "bridge's underside"},
-                                        {0, "wall"}}) {
+    for (const auto& [polygon, name] :
+         {std::pair<int32_t, const char*>{2, "floor"}, {5, "bridge's underside"}, {0, "wall"}}) {
         const double exact = covered_mean(fine, truth, polygon, 1.5f);
         const double by_size = covered_mean(coarse, coarse_light, polygon, 1.5f);
         const double by_sight = covered_mean(sized, sized_light, polygon, 1.5f);
-        std::printf("covered %s: dense %.5f; %zu elements of the element size %.5f (%+.1f%%); %zu sized by sight "
-                    "%.5f (%+.1f%%)\n",
-                    name, exact, coarse.size(), by_size, 100.0 * (by_size / exact - 1.0), sized.size(), by_sight,
-                    100.0 * (by_sight / exact - 1.0));
+        std::printf(
+            "covered %s: dense %.5f; %zu elements of the element size %.5f (%+.1f%%); %zu sized by sight "
+            "%.5f (%+.1f%%)\n",
+            name, exact, coarse.size(), by_size, 100.0 * (by_size / exact - 1.0), sized.size(), by_sight,
+            100.0 * (by_sight / exact - 1.0));
         EXPECT_NEAR(by_sight / exact, 1.0, 0.15) << name;
         if (polygon == 5) EXPECT_GT(by_size / exact, 2.0) << name;  // what the element size alone gives
     }
