@@ -59,7 +59,7 @@ BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settin
     ElementLimits limits = settings.limits;
     limits.polygon_edge = sizes_by_sight(build.elements, input.face_count, settings.element_size);
     if (!any_size(limits.polygon_edge)) return build;
-    return build_elements(input, settings.element_size, limits);  // as fast as the first: its progress is told
+    return build_elements(input, settings.element_size, limits);  // the first build, as long, told the progress
 }
 
 Clusters uniform_clusters(const BuildResult& build, const SceneInput& input, const BakeSettings& settings) {

@@ -302,6 +302,13 @@ struct Piece {
     double nu, nv;
 };
 
+/// The longest edge polygon f's elements may have: `max_edge`, or its own smaller one
+/// (ElementLimits::polygon_edge).
+float polygon_max_edge(const ElementLimits& limits, std::size_t f, float max_edge) {
+    if (f >= limits.polygon_edge.size() || !(limits.polygon_edge[f] > 0.0f)) return max_edge;
+    return max_edge > 0.0f ? std::min(max_edge, limits.polygon_edge[f]) : limits.polygon_edge[f];
+}
+
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
@@ -496,10 +503,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
-        const float edge = f < limits.polygon_edge.size() && limits.polygon_edge[f] > 0.0f &&
-                                   (max_edge == 0.0f || limits.polygon_edge[f] < max_edge)
-                               ? limits.polygon_edge[f]
-                               : max_edge;
+        const float edge = polygon_max_edge(limits, f, max_edge);
         const auto cut_end =
             std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
