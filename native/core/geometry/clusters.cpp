@@ -215,7 +215,7 @@ std::vector<Lattice> plane_lattices(std::vector<Region>& regions, double size) {
 
 /// One region per mergeable element; `region_of` -1 for the others.
 std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, const std::vector<Vec3>& lamps,
-                                   double near, double size, const std::vector<float>& polygon_edge,
+                                   double near, float size, const std::vector<float>& polygon_edge,
                                    std::vector<int32_t>& region_of) {
     std::vector<Region> regions;
     region_of.assign(elements.size(), -1);
@@ -233,10 +233,7 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
         region.reflectance = elements.reflectance[e];
         region.emission = elements.emission[e];
         region.side = elements.side.empty() ? Elements::kOneSided : elements.side[e];
-        const std::size_t polygon = std::size_t(elements.polygon[e]);
-        region.size = polygon < polygon_edge.size() && polygon_edge[polygon] > 0.0f
-                          ? std::min(size, double(polygon_edge[polygon]))
-                          : size;
+        region.size = polygon_max_edge(polygon_edge, std::size_t(elements.polygon[e]), size);
         region_of[e] = int32_t(regions.size());
         regions.push_back(std::move(region));
     }
@@ -411,7 +408,7 @@ Clusters cluster_elements(const Elements& output, const SceneInput& input, float
     if (!(element_size > 0.0f)) return clusters;
     std::vector<int32_t> region_of;
     std::vector<Region> regions =
-        single_regions(output, input, lamps, 2.0 * double(element_size), double(element_size), polygon_edge, region_of);
+        single_regions(output, input, lamps, 2.0 * double(element_size), element_size, polygon_edge, region_of);
     merge_regions(regions, double(element_size));
     bool any = false;
     for (const Region& region : regions) {

@@ -302,13 +302,6 @@ struct Piece {
     double nu, nv;
 };
 
-/// The longest edge polygon f's elements may have: `max_edge`, or its own smaller one
-/// (ElementLimits::polygon_edge).
-float polygon_max_edge(const ElementLimits& limits, std::size_t f, float max_edge) {
-    if (f >= limits.polygon_edge.size() || !(limits.polygon_edge[f] > 0.0f)) return max_edge;
-    return max_edge > 0.0f ? std::min(max_edge, limits.polygon_edge[f]) : limits.polygon_edge[f];
-}
-
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
@@ -503,7 +496,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
         const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
-        const float edge = polygon_max_edge(limits, f, max_edge);
+        const float edge = polygon_max_edge(limits.polygon_edge, f, max_edge);
         const auto cut_end =
             std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
@@ -533,6 +526,11 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
     if (in.textures) detail::texture_elements(in, out, progress);
     result.polygon_edge = limits.polygon_edge;
     return result;
+}
+
+float polygon_max_edge(const std::vector<float>& polygon_edge, std::size_t polygon, float max_edge) {
+    if (polygon >= polygon_edge.size() || !(polygon_edge[polygon] > 0.0f)) return max_edge;
+    return max_edge > 0.0f ? std::min(max_edge, polygon_edge[polygon]) : polygon_edge[polygon];
 }
 
 float scene_diagonal(const std::vector<Vec3>& points) {

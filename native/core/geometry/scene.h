@@ -155,6 +155,11 @@ BuildResult build_elements(const SceneInput& input, float max_edge, const Elemen
 /// reads new materials onto elements built before (bake/cached_transport.cpp).
 void validate_materials(const SceneInput& input);
 
+/// The longest edge polygon `polygon`'s elements may have: `max_edge` (0: no bound), or its own
+/// smaller one in `polygon_edge` (ElementLimits::polygon_edge, BuildResult::polygon_edge; 0 or
+/// absent: none).
+float polygon_max_edge(const std::vector<float>& polygon_edge, std::size_t polygon, float max_edge);
+
 /// The diagonal of the points' bounding box, at least 1e-6 (1 for no points): the scale the
 /// gaps and lifts of rays are measured against.
 float scene_diagonal(const std::vector<Vec3>& points);
