@@ -31,6 +31,8 @@ const double kCoplanarCosine = std::cos(0.5 * M_PI / 180.0);
 constexpr double kPlaneDistance = 1e-3;
 /// Room for rounding in the element size bound: faces cut to exactly the size merge.
 constexpr double kSizeSlack = 1e-4;
+/// A cluster's longest edge against its distance from the nearest point lamp (lamp_edge).
+constexpr double kLampDistanceToEdge = 0.5;
 
 /// A group of merged elements: its outline (a convex triangle or quad, CCW about its normal), which
 /// of its edges lie on an intersection or contact line (Elements::cut_edges), and what every member
@@ -64,17 +66,22 @@ bool textured(const SceneInput& input, int32_t face) {
            (t->emission_texture != nullptr && t->emission_texture[face] >= 0);
 }
 
-/// Whether element e may merge: an element that is not a lamp's, of an untextured face, no nearer
-/// to a point lamp than `near` (elements nearer see the lamp's light and the geometry around it
-/// change within a merged element's size). An emitting polygon's fronts merge with fronts, its back
-/// sides with back sides (alike). (Elements along intersection and contact lines merge too, but
-/// never across the line: joined_outline.)
-bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e, const std::vector<Vec3>& lamps,
-               double near) {
+/// Whether element e may merge: an element that is not a lamp's, of an untextured face. An emitting
+/// polygon's fronts merge with fronts, its back sides with back sides (alike). (Elements along
+/// intersection and contact lines merge too, but never across the line: joined_outline.)
+bool mergeable(const Elements& elements, const SceneInput& input, std::size_t e) {
     if (!elements.blocks(e)) return false;
-    for (const Vec3& lamp : lamps)
-        if (glm::distance(elements.centre[e], lamp) < near) return false;
     return !textured(input, elements.polygon[e]);
+}
+
+/// The longest edge a cluster holding element e may have beside the point lamps: half the distance
+/// from its centre to the nearest. A merged element's form factors come from its centre, and beside
+/// a lamp what its faces see of the lamp's fixture, and the fixture's own bright light, change
+/// within a distance of the lamp's order; a face at twice its size from every lamp sees them alike.
+double lamp_edge(const Elements& elements, std::size_t e, const std::vector<Vec3>& lamps) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec3& lamp : lamps) nearest = std::min(nearest, double(glm::distance(elements.centre[e], lamp)));
+    return kLampDistanceToEdge * nearest;
 }
 
 /// An oriented edge between two corners, by their bits (neighbouring faces' elements meet at
@@ -215,12 +222,12 @@ std::vector<Lattice> plane_lattices(std::vector<Region>& regions, double size) {
 
 /// One region per mergeable element; `region_of` -1 for the others.
 std::vector<Region> single_regions(const Elements& elements, const SceneInput& input, const std::vector<Vec3>& lamps,
-                                   double near, float size, const std::vector<float>& polygon_edge,
+                                   float size, const std::vector<float>& polygon_edge,
                                    std::vector<int32_t>& region_of) {
     std::vector<Region> regions;
     region_of.assign(elements.size(), -1);
     for (std::size_t e = 0; e < elements.size(); ++e) {
-        if (!mergeable(elements, input, e, lamps, near)) continue;
+        if (!mergeable(elements, input, e)) continue;
         Region region;
         const unsigned bits = elements.cut_edges.empty() ? 0u : elements.cut_edges[e];
         for (int k = 0; k < elements.corner_count(e); ++k) {
@@ -233,7 +240,8 @@ std::vector<Region> single_regions(const Elements& elements, const SceneInput& i
         region.reflectance = elements.reflectance[e];
         region.emission = elements.emission[e];
         region.side = elements.side.empty() ? Elements::kOneSided : elements.side[e];
-        region.size = polygon_max_edge(polygon_edge, std::size_t(elements.polygon[e]), size);
+        region.size = std::min(double(polygon_max_edge(polygon_edge, std::size_t(elements.polygon[e]), size)),
+                               lamp_edge(elements, e, lamps));
         region_of[e] = int32_t(regions.size());
         regions.push_back(std::move(region));
     }
@@ -407,8 +415,7 @@ Clusters cluster_elements(const Elements& output, const SceneInput& input, float
     Clusters clusters;
     if (!(element_size > 0.0f)) return clusters;
     std::vector<int32_t> region_of;
-    std::vector<Region> regions =
-        single_regions(output, input, lamps, 2.0 * double(element_size), element_size, polygon_edge, region_of);
+    std::vector<Region> regions = single_regions(output, input, lamps, element_size, polygon_edge, region_of);
     merge_regions(regions, double(element_size));
     bool any = false;
     for (const Region& region : regions) {

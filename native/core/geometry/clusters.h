@@ -43,9 +43,9 @@ struct Clusters {
 
 /// Merges `output`'s small coplanar elements (see the top of this file) into solve elements whose
 /// edges are at most `element_size` metres (0: nothing merges). `input` gives each element's
-/// material and whether its face is textured. Elements within twice `element_size` of a point
-/// lamp at one of `lamps` keep their own: beside a lamp its light and what the geometry around it
-/// lets through change within a merged element's size (a lamp's fixture). `polygon_edge`: per input
+/// material and whether its face is textured. Beside the point lamps at `lamps` a cluster's edges
+/// are at most half its members' distance from the nearest: there its light and what the geometry
+/// around the lamp lets through (a lamp's fixture) change within that distance. `polygon_edge`: per input
 /// polygon, a smaller size its elements merge up to (BuildResult::polygon_edge; 0: `element_size`).
 Clusters cluster_elements(const Elements& output, const SceneInput& input, float element_size,
                           const std::vector<Vec3>& lamps = {}, const std::vector<float>& polygon_edge = {});

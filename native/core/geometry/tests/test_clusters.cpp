@@ -187,28 +187,45 @@ TEST(Clusters, ClustersNeverStraddleAContactLine) {
     EXPECT_GT(merged_cut_elements, cut_elements / 2);
 }
 
-/// A floor of small faces with a point lamp 10 cm over one corner: the faces within twice the
-/// element size of the lamp keep their own solve elements, the rest merge as without the lamp.
-TEST(Clusters, FacesBesideAPointLampKeepTheirOwnElements) {
+/// A floor of small faces with a point lamp 10 cm over it: every cluster's edges are at most half
+/// its members' distance from the lamp, so faces within twice their size of it keep their own solve
+/// elements, clusters grow with the distance, and far from the lamp they reach the element size as
+/// without it.
+TEST(Clusters, ClustersBesideAPointLampAreNoLongerThanHalfTheirDistance) {
     test::SceneArrays floor;
-    floor.add_grid(Vec3(0.0f), Vec3(2, 0, 0), Vec3(0, 2, 0), 32, Rgb(0.5));
+    floor.add_grid(Vec3(0.0f), Vec3(2, 0, 0), Vec3(0, 2, 0), 32, Rgb(0.5));  // faces of 6.25 cm
     const BuildResult build = build_elements(floor.input(), kSize);
     const Vec3 lamp(0.5f, 0.5f, 0.1f);
     const Clusters lit = cluster_elements(build.elements, floor.input(), kSize, {lamp});
     const Clusters unlit = cluster_elements(build.elements, floor.input(), kSize);
     ASSERT_TRUE(lit.merged());
-    std::vector<int> members(lit.elements.size(), 0);
-    for (const int32_t s : lit.of_element) ++members[std::size_t(s)];
-    std::size_t near = 0;
+    const Elements& solve = lit.elements;
+    std::vector<float> nearest(solve.size(), 1e9f);
+    std::vector<int> members(solve.size(), 0);
     for (std::size_t e = 0; e < build.elements.size(); ++e) {
-        if (glm::distance(build.elements.centre[e], lamp) >= 2.0f * kSize) continue;
-        ++near;
-        EXPECT_EQ(members[std::size_t(lit.of_element[e])], 1) << e;
+        const auto s = std::size_t(lit.of_element[e]);
+        nearest[s] = std::min(nearest[s], glm::distance(build.elements.centre[e], lamp));
+        ++members[s];
     }
-    EXPECT_GT(near, 100u);                  // a disk of about 0.5 m around the lamp's foot: about 190 faces of 6.25 cm
+    int single_near = 0, far_full = 0;
+    for (std::size_t s = 0; s < solve.size(); ++s) {
+        float longest = 0.0f;
+        for (int k = 0; k < solve.corner_count(s); ++k)
+            longest =
+                std::max(longest, glm::distance(solve.vertices[solve.corners[s][k]],
+                                                solve.vertices[solve.corners[s][(k + 1) % solve.corner_count(s)]]));
+        if (members[s] > 1) EXPECT_LE(longest, 0.5f * nearest[s] * 1.001f) << s;
+        if (nearest[s] < 2.0f * 0.0625f) {
+            EXPECT_EQ(members[s], 1) << s;
+            ++single_near;
+        }
+        if (nearest[s] > 2.0f * kSize && longest > 0.99f * kSize) ++far_full;
+    }
+    EXPECT_GE(single_near, 4);              // the faces under the lamp
+    EXPECT_GT(far_full, 40);                // most of the 64 element-sized squares of the unlit floor
     EXPECT_EQ(unlit.elements.size(), 64u);  // the 2 m floor in elements of the element size
-    EXPECT_GT(lit.elements.size(), unlit.elements.size() + near / 2);
-    EXPECT_LT(lit.elements.size(), build.elements.size() / 2);
+    EXPECT_GT(lit.elements.size(), unlit.elements.size());
+    EXPECT_LT(lit.elements.size(), build.elements.size() / 4);  // clusters of more than 4 faces on average
 }
 
 /// No element size (one element per polygon): nothing merges.
