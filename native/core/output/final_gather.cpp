@@ -686,14 +686,37 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         }
 }
 
-/// Whether a point or spot lamp lies in front of the element (centre `centre`, unit normal
-/// `normal`, `size` from its centre to its farthest corner), nearer to its plane than half its size
-/// and over it: a lamp hung a few centimetres from a wall or inside a fixture.
-bool near_lamp(const Lights& lights, const glm::dvec3& centre, const glm::dvec3& normal, double size) {
+/// The distance from `point` to element e's polygon: over the polygon the distance to its plane, beside
+/// it the way to its nearest edge as well.
+double distance_to_element(const Elements& elements, std::size_t e, const glm::dvec3& point) {
+    const glm::dvec3 normal(elements.normal[e]);
+    const int count = elements.corner_count(e);
+    const glm::dvec3 first(elements.vertices[std::size_t(elements.corners[e][0])]);
+    const double height = glm::dot(normal, point - first);
+    const glm::dvec3 foot = point - height * normal;
+    bool inside = true;
+    double beside = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count; ++k) {
+        const glm::dvec3 a(elements.vertices[std::size_t(elements.corners[e][k])]);
+        const glm::dvec3 b(elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])]);
+        const glm::dvec3 edge = b - a;
+        inside = inside && glm::dot(glm::cross(edge, foot - a), normal) >= 0.0;
+        const double along = std::clamp(glm::dot(foot - a, edge) / std::max(glm::dot(edge, edge), 1e-300), 0.0, 1.0);
+        beside = std::min(beside, glm::length(foot - (a + along * edge)));
+    }
+    return std::sqrt(height * height + (inside ? 0.0 : beside * beside));
+}
+
+/// Whether a point or spot lamp lies in front of element e (`size` from its centre to its farthest
+/// corner) nearer to it than half its size: a lamp hung a few centimetres from a wall or inside a
+/// fixture. The distance is to the element, not its centre: an element one of whose corners lies
+/// under the lamp holds the lamp's peak there.
+bool near_lamp(const Lights& lights, const Elements& elements, std::size_t e, double size) {
+    const glm::dvec3 normal(elements.normal[e]), centre(elements.centre[e]);
     return std::any_of(lights.points.begin(), lights.points.end(), [&](const PointLight& lamp) {
-        const glm::dvec3 offset = glm::dvec3(lamp.position) - centre;
-        const double distance = glm::dot(normal, offset);
-        return distance > 0.0 && distance < 0.5 * size && glm::length(offset) < size + double(lamp.radius);
+        const glm::dvec3 position(lamp.position);
+        return glm::dot(normal, position - centre) > 0.0 &&
+               distance_to_element(elements, e, position) < 0.5 * size + double(lamp.radius);
     });
 }
 
@@ -701,12 +724,10 @@ bool near_lamp(const Lights& lights, const glm::dvec3& centre, const glm::dvec3&
 /// hung 1 cm under it, a wall beside a lamp): that light changes on the scale of the source's
 /// distance, which the element's corners do not resolve (the vertex at the panel's edge holds half
 /// its back side's light, the next vertex none, and the line between them is far too bright; a
-/// corner next to a lamp holds its peak, the others almost nothing). Their corners' light is scaled
-/// to the element's solved light, which integrates the source over the element (the near field's
-/// exact area factors, near_field.h; the lamps' exact mean over the element, lights.h).
-void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rgb>& emitted,
-                                  const std::vector<Rgb>& radiance, const std::vector<EmitterRun>& runs,
-                                  const Lights& lights, std::vector<Rgb>& field) {
+/// corner next to a lamp holds its peak, the others almost nothing).
+std::vector<std::size_t> near_lit_elements(const Elements& elements, const std::vector<Rgb>& emitted,
+                                           const std::vector<EmitterRun>& runs, const Lights& lights) {
+    std::vector<std::size_t> near;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (elements.is_back(e) || max_channel(emitted[e]) > 0.0) continue;
         const int count = elements.corner_count(e);
@@ -719,7 +740,20 @@ void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rg
             const double distance = glm::dot(run.normal, centre - run.point);
             return distance > 0.0 && distance < 0.5 * size && glm::length(centre - run.centre) < run.radius + size;
         });
-        if (!near_lit && !near_lamp(lights, centre, glm::dvec3(elements.normal[e]), size)) continue;
+        if (near_lit || near_lamp(lights, elements, e, size)) near.push_back(e);
+    }
+    return near;
+}
+
+/// The field's corners of the `near` lit elements (near_lit_elements) scaled to the element's
+/// solved light, which integrates the source over the element (the near field's exact area
+/// factors, near_field.h; the lamps' exact mean over the element, lights.h). Whatever writes
+/// gathered light into the field (the field's vertices, the output points after the first pass,
+/// the seams' solve) keeps this, so that no later pass reads a lamp's peak spread over an element.
+void keep_near_lit_elements_power(const Elements& elements, const std::vector<Rgb>& radiance,
+                                  const std::vector<std::size_t>& near, std::vector<Rgb>& field) {
+    for (const std::size_t e : near) {
+        const int count = elements.corner_count(e);
         for (int c = 0; c < 3; ++c) {
             double sum = 0.0;
             for (int k = 0; k < count; ++k) sum += field[4 * e + std::size_t(k)][c];
@@ -1118,6 +1152,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
     // of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
+    const std::vector<std::size_t> near_lit = near_lit_elements(elements, emitted, runs, lights);
     CornerWedges wedges;
     std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
     KnownDirectLight field_direct;
@@ -1127,7 +1162,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics, field_direct);
-        keep_near_lit_elements_power(elements, emitted, radiance, runs, lights, field);
+        keep_near_lit_elements_power(elements, radiance, near_lit, field);
         meter.add_to(cost.field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
         // point (along the same shadow rays as at the vertex, the change has little noise).
@@ -1166,6 +1201,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                 field[4 * e + k] = value[std::size_t(i)];
                 probe[4 * e + k] = Rgb(0.0);  // the gathered value: not the field's noise
             }
+        keep_near_lit_elements_power(elements, radiance, near_lit, field);
     };
     // Seam vertices that hold no input corner are read by the output's rays only where those land
     // beside a seam, many of them at once: a field's share of rays each (four times its rays).

@@ -305,6 +305,67 @@ TEST(FinalGather, FloorUnderAPointLampIsExact) {
     }
 }
 
+/// The light arriving at X (normal +x) from a Lambertian floor z = 0 over [x0, x1] x [y0, y1], lit
+/// only by a point lamp of intensity I at P: the floor's radiance rho I h / (pi d^3) carried by
+/// cos cos / r^2, summed by the midpoint rule on cells of `step` metres.
+double floor_light_at(const glm::dvec3& X, const glm::dvec3& P, double rho, double I, double x0, double x1, double y0,
+                      double y1, double step) {
+    const int nx = int(std::lround((x1 - x0) / step)), ny = int(std::lround((y1 - y0) / step));
+    const double dx = (x1 - x0) / nx, dy = (y1 - y0) / ny;
+    double sum = 0.0;
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) {
+            const glm::dvec3 Y(x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy, 0.0);
+            const glm::dvec3 toLamp = P - Y, toX = X - Y;
+            const double d = glm::length(toLamp), r2 = glm::dot(toX, toX);
+            const double radiance = rho * I * P.z / (M_PI * d * d * d);
+            sum += radiance * Y.x * X.z / (r2 * r2);  // cos at X = Y.x / r, cos at Y = X.z / r
+        }
+    return sum * dx * dy;
+}
+
+TEST(FinalGather, AWallBesideALampHungOverAFloorVertexTakesItsExactReflection) {
+    // A floor of 8 x 8 faces (reflectance 0.5) with a point lamp 5 cm over one of its vertices, and a
+    // wall of 8 x 8 faces standing on the floor's edge that reflects nothing: the light arriving at
+    // the wall is the lamp's and one reflection off the floor, exact by quadrature. The floor's
+    // corners at the lamp's foot hold the lamp's peak, 400 times the light 1 m off; read as the
+    // corners of the faces around it, they would bring those faces' light to several times what
+    // the lamp gives them, after every pass that writes gathered light back into the field (the
+    // points beside the seam are gathered again).
+    const double h = 0.05, rho = 0.5, I = 1.0;
+    const glm::dvec3 P(0.5, 0.0, h);
+    test::SceneArrays s;
+    s.add_grid(Vec3(0, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 8, Rgb(rho));  // the floor, normal +z
+    s.add_grid(Vec3(0, -1, 0), Vec3(0, 2, 0), Vec3(0, 0, 2), 8, Rgb(0.0));  // the wall, normal +x
+    BakeSettings settings = gather_settings(0.5f, true);
+    settings.final_gather.rays = 3136;
+    settings.final_gather.field_rays = 64;
+    settings.final_gather.shadow_rays = 256;
+    settings.final_gather.cache_accuracy = 0.15;
+    PointLight lamp;
+    lamp.position = Vec3(P);
+    lamp.intensity = Rgb(I);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(s.input(), settings);
+    for (const glm::dvec3 X :
+         {glm::dvec3(0, 0, 0.25), glm::dvec3(0, 0, 0.5), glm::dvec3(0, 0.5, 0.25), glm::dvec3(0, 0, 1.0)}) {
+        const glm::dvec3 toLamp = P - X;
+        const double direct = I * toLamp.x / std::pow(glm::length(toLamp), 3.0);
+        const double reflected = floor_light_at(X, P, rho, I, 0.3, 0.7, -0.2, 0.2, 5e-4) +
+                                 floor_light_at(X, P, rho, I, 0.0, 2.0, -1.0, 1.0, 5e-3) -
+                                 floor_light_at(X, P, rho, I, 0.3, 0.7, -0.2, 0.2, 5e-3);
+        const double expected = (direct + reflected) / M_PI;
+        const std::vector<std::size_t> corners = corners_at(s, Vec3(X));
+        ASSERT_EQ(corners.size(), 4u);
+        for (const std::size_t c : corners) {
+            const double light = r.light_colors.input_corner[c].g;
+            std::printf("wall at (%.2f, %.2f): light %.5f, exact %.5f (direct %.5f), %+.2f%%\n", X.y, X.z, light,
+                        expected, direct / M_PI, 100.0 * (light / expected - 1.0));
+            EXPECT_NEAR(light / expected, 1.0, 0.03);
+        }
+    }
+}
+
 TEST(FinalGather, CornersLyingOnAnotherFaceAreBlackAsInCycles) {
     // A 2 m square of its own lies on the floor (the same plane, facing up, as duplicate faces of
     // game levels do), under a point lamp. Cycles' rays leave a point without an offset and meet
