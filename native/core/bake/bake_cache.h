@@ -20,7 +20,9 @@
 /// their corners, the material ids, which polygons emit and which emit from their front only (an
 /// emitting polygon gets a back side), and the settings that choose the elements and whether F is
 /// stored (element size, limits, resolution, rotations, near field, the memory budget, progressive
-/// or not). The gather's rays are named by their own origin, seed and count, so a change of gather
+/// or not); and the solve's elements, merged beside a point lamp by its distance (cluster_elements):
+/// a re-bake merges the faces again with its own lamps, and where that changes them it bakes afresh.
+/// The gather's rays are named by their own origin, seed and count, so a change of gather
 /// rays needs no key: a set not recorded is traced and kept. The hierarchical method refines its
 /// links from the light, and the media bake's zones see the media: neither keeps a cache.
 ///

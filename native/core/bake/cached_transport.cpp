@@ -88,6 +88,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Whether the solve's elements `transport` keeps are those the bake with `settings` merges: the
+/// clusters beside a point lamp follow its distance (cluster_elements), which the geometry key does
+/// not hold.
+bool same_clusters(const UniformTransport& transport, const SceneInput& input, const BakeSettings& settings) {
+    return uniform_clusters(transport.build, input, settings).of_element == transport.clusters.of_element;
+}
+
 }  // namespace
 
 uint64_t geometry_key(const SceneInput& input, const BakeSettings& settings) {
@@ -110,6 +117,11 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
     CachedTransport cached;
     cached.key = geometry_key(input, settings);
     cached.transport = cache.take(cached.key, cached.use.not_reused);
+    if (cached.transport != nullptr && !same_clusters(*cached.transport, input, settings)) {
+        cached.transport.reset();
+        cached.use.not_reused =
+            "a point lamp moved beside small faces, which the solve merges by their distance from it";
+    }
     if (cached.transport != nullptr) {
         const auto start = std::chrono::steady_clock::now();
         refresh_materials(input, *cached.transport, progress);
