@@ -297,7 +297,8 @@ def bake(scene, reuse=True, **overrides):
     corner, its relation and source, its parts from the gather: sampling, the solution's bias and the
     field's light; the solve's bound), warnings, and seconds per phase (export, form_factors, solve,
     writeback), and what it did with the session's bake cache (cache: reused, kept, bytes,
-    direct_bytes (of bytes, the gather's direct light kept per lamp and emitter), not_reused, not_kept;
+    direct_bytes (of bytes, the gather's direct light kept per lamp and emitter), merged_again (reused, the
+    faces beside moved lamps merged anew and their form factors computed again), not_reused, not_kept;
     None with reuse=False).
 
     `reuse` (default True): a bake of the same geometry as the session's previous bake (only lamps,

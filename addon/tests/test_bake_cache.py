@@ -68,6 +68,10 @@ class BakeCacheTest(unittest.TestCase):
         self.assertEqual(bake_cache.cache_text({"reused": True, "kept": True, "bytes": 42 * mb, "direct_bytes": 5 * mb,
                                                 "not_reused": "", "not_kept": ""}),
                          "Reused the geometry of the previous bake (42 MB, 5 MB of it the direct light per source)")
+        self.assertEqual(bake_cache.cache_text({"reused": True, "merged_again": True, "kept": True, "bytes": 42 * mb,
+                                                "not_reused": "", "not_kept": ""}),
+                         "Reused the geometry of the previous bake, its form factors computed again (the faces "
+                         "beside the moved lamps merge otherwise) (42 MB)")
         self.assertEqual(bake_cache.cache_text({"reused": False, "kept": True, "bytes": 3 * mb,
                                                 "not_reused": "no earlier bake was kept", "not_kept": ""}),
                          "Baked the geometry afresh (no earlier bake was kept) and kept it for the next bake (3 MB)")

@@ -294,6 +294,7 @@ py::dict bake_result(const BakeResult& result) {
     if (result.cache) {
         py::dict cache;
         cache["reused"] = result.cache->reused;
+        cache["merged_again"] = result.cache->merged_again;
         cache["kept"] = result.cache->kept;
         cache["bytes"] = result.cache->bytes;
         cache["direct_bytes"] = result.cache->direct_bytes;

@@ -50,10 +50,13 @@ def cache_text(cache: Optional[Dict[str, Any]]) -> str:
     size = "%.0f MB" % (cache["bytes"] / MEBIBYTE)
     if cache.get("direct_bytes"):
         size += ", %.0f MB of it the direct light per source" % (cache["direct_bytes"] / MEBIBYTE)
+    reused = "Reused the geometry of the previous bake"
+    if cache.get("merged_again"):
+        reused += ", its form factors computed again (the faces beside the moved lamps merge otherwise)"
     if cache["reused"] and cache["kept"]:
-        return "Reused the geometry of the previous bake (%s)" % size
+        return "%s (%s)" % (reused, size)
     if cache["reused"]:
-        return "Reused the geometry of the previous bake; not kept for the next: %s" % cache["not_kept"]
+        return "%s; not kept for the next: %s" % (reused, cache["not_kept"])
     if cache["kept"]:
         return "Baked the geometry afresh (%s) and kept it for the next bake (%s)" % (cache["not_reused"], size)
     return "Baked the geometry afresh (%s); not kept for the next bake: %s" % (

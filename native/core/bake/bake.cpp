@@ -68,13 +68,25 @@ UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& 
     transport.clusters = uniform_clusters(transport.build, input, settings);
     transport.emitted = transport.build.elements.emission;
     transport.seconds_elements = seconds_since(start);
-    transport.matrix_stored = stores_matrix(transport.solve_elements(), settings);
-    if (!transport.matrix_stored) return transport;
-    start = Clock::now();
-    RowSettings rows = row_settings(settings);
-    transport.form_factors.emplace(compute_form_factors(transport.solve_elements(), rows, progress));
-    transport.seconds_form_factors = seconds_since(start);
+    solve_form_factors(transport, settings, progress);
     return transport;
+}
+
+void solve_form_factors(UniformTransport& transport, const BakeSettings& settings, const ProgressFn& progress) {
+    transport.form_factors.reset();
+    transport.seconds_form_factors = 0.0;
+    transport.matrix_stored = stores_matrix(transport.solve_elements(), settings);
+    if (!transport.matrix_stored) return;
+    const auto start = Clock::now();
+    transport.form_factors.emplace(compute_form_factors(transport.solve_elements(), row_settings(settings), progress));
+    transport.seconds_form_factors = seconds_since(start);
+}
+
+void merge_again(UniformTransport& transport, Clusters clusters, const BakeSettings& settings,
+                 const ProgressFn& progress) {
+    transport.clusters = std::move(clusters);
+    transport.kept_first_shot.reset();
+    solve_form_factors(transport, settings, progress);
 }
 
 RowSettings row_settings(const BakeSettings& settings) {

@@ -123,6 +123,7 @@ struct CacheUse {
     std::string not_reused;        ///< why it was not reused ("" when it was)
     std::string not_kept;          ///< why it was not kept ("" when it was)
     std::size_t direct_bytes = 0;  ///< of `bytes`, the direct light kept per source (gather, first shot)
+    bool merged_again = false;     ///< reused, but its lamps merge the faces otherwise: F computed anew
 };
 
 struct BakeResult {

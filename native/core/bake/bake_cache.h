@@ -21,7 +21,9 @@
 /// emitting polygon gets a back side), and the settings that choose the elements and whether F is
 /// stored (element size, limits, resolution, rotations, near field, the memory budget, progressive
 /// or not); and the solve's elements, merged beside a point lamp by its distance (cluster_elements):
-/// a re-bake merges the faces again with its own lamps, and where that changes them it bakes afresh.
+/// a re-bake merges the faces again with its own lamps, and where that changes them it computes the
+/// form factors again over the new ones (the output's elements, the gather's hits and its direct
+/// light stay: they are the output's; kept first shots onto the old ones go).
 /// The gather's rays are named by their own origin, seed and count, so a change of gather
 /// rays needs no key: a set not recorded is traced and kept. The hierarchical method refines its
 /// links from the light, and the media bake's zones see the media: neither keeps a cache.

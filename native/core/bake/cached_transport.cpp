@@ -88,13 +88,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Whether the solve's elements `transport` keeps are those the bake with `settings` merges: the
-/// clusters beside a point lamp follow its distance (cluster_elements), which the geometry key does
-/// not hold.
-bool same_clusters(const UniformTransport& transport, const SceneInput& input, const BakeSettings& settings) {
-    return uniform_clusters(transport.build, input, settings).of_element == transport.clusters.of_element;
-}
-
 }  // namespace
 
 uint64_t geometry_key(const SceneInput& input, const BakeSettings& settings) {
@@ -117,17 +110,18 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
     CachedTransport cached;
     cached.key = geometry_key(input, settings);
     cached.transport = cache.take(cached.key, cached.use.not_reused);
-    if (cached.transport != nullptr && !same_clusters(*cached.transport, input, settings)) {
-        cached.transport.reset();
-        cached.use.not_reused =
-            "a point lamp moved beside small faces, which the solve merges by their distance from it";
-    }
     if (cached.transport != nullptr) {
         const auto start = std::chrono::steady_clock::now();
         refresh_materials(input, *cached.transport, progress);
         cached.transport->seconds_elements = seconds_since(start);
         cached.transport->seconds_form_factors = 0.0;
         cached.use.reused = true;
+        // The clusters beside a point lamp follow its distance, which the key does not hold.
+        Clusters clusters = uniform_clusters(cached.transport->build, input, settings);
+        if (clusters.of_element != cached.transport->clusters.of_element) {
+            merge_again(*cached.transport, std::move(clusters), settings, progress);
+            cached.use.merged_again = true;
+        }
     } else {
         cached.transport = std::make_unique<UniformTransport>(uniform_transport(input, settings, progress));
     }

@@ -83,6 +83,15 @@ struct UniformTransport {
 /// stores_matrix, F over the solve's (progress phases as build_elements' and compute_form_factors').
 UniformTransport uniform_transport(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress);
 
+/// F over `transport`'s solve's elements when stores_matrix, else none (rendered on demand).
+void solve_form_factors(UniformTransport& transport, const BakeSettings& settings, const ProgressFn& progress);
+
+/// `transport` with `clusters` as the solve's elements (a re-bake whose lamps merge the faces
+/// otherwise: cluster_elements): F over them again, and their kept first shot let go. The output's
+/// elements, the gather's hits and the direct light kept at its points stay: they are the output's.
+void merge_again(UniformTransport& transport, Clusters clusters, const BakeSettings& settings,
+                 const ProgressFn& progress);
+
 /// The hemi-cube rows' settings of a bake.
 RowSettings row_settings(const BakeSettings& settings);
 

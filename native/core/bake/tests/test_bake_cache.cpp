@@ -132,9 +132,10 @@ TEST(BakeCache, AReBakeAfterALightingOrMaterialEditIsTheBakeFromScratch) {
 TEST(BakeCache, AReBakeAfterALampMovedBesideMergedFacesMergesThemAgain) {
     // A floor of 16 x 16 faces, half the element size each: the solve merges them, and beside a
     // point lamp its clusters follow the lamp's distance (cluster_elements). A lamp moved 1 m over
-    // the floor leaves the clusters as they were, and the re-bake reuses the cache; a lamp brought
-    // 0.3 m over it changes them, and the bake merges the faces again and solves afresh. Either way
-    // the colours are the bake from scratch's.
+    // the floor leaves the clusters as they were, and the re-bake reuses everything; a lamp brought
+    // 0.3 m over it changes them, and the re-bake merges the faces again and computes their form
+    // factors anew, reading the gather's recorded hits as before. Either way the colours are the
+    // bake from scratch's.
     test::SceneArrays scene;
     scene.add_grid(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 16, kWhite);
     scene.add_quad({0, 0, 0}, {0, 2, 0}, {0, 2, 1}, {0, 0, 1}, kRed, kBlack, 1);
@@ -145,14 +146,19 @@ TEST(BakeCache, AReBakeAfterALampMovedBesideMergedFacesMergesThemAgain) {
     settings.lights.points[0].position.x -= 0.4f;
     const BakeResult aside = bake(scene.input(), settings, {}, &cache);
     EXPECT_TRUE(aside.cache->reused) << aside.cache->not_reused;
+    EXPECT_FALSE(aside.cache->merged_again);
+    EXPECT_EQ(aside.seconds_form_factors, 0.0);
     expect_same_bake(aside, bake(scene.input(), settings), "a lamp 1 m over the floor moved");
     settings.lights.points[0].position = Vec3(1.0f, 1.0f, 0.3f);
     const BakeResult near = bake(scene.input(), settings, {}, &cache);
-    EXPECT_FALSE(near.cache->reused);
-    EXPECT_EQ(near.cache->not_reused,
-              "a point lamp moved beside small faces, which the solve merges by their distance from it");
+    EXPECT_TRUE(near.cache->reused) << near.cache->not_reused;
+    EXPECT_TRUE(near.cache->merged_again);
+    EXPECT_GT(near.seconds_form_factors, 0.0);
     EXPECT_GT(near.solve_elements, first.solve_elements);
-    expect_same_bake(near, bake(scene.input(), settings), "a lamp brought 0.3 m over the floor");
+    const BakeResult fresh = bake(scene.input(), settings);
+    expect_same_bake(near, fresh, "a lamp brought 0.3 m over the floor");
+    EXPECT_EQ(near.gather_cost.probes.rays, 0u);  // the gather read its recorded hits
+    EXPECT_LT(near.gather_cost.rays(), fresh.gather_cost.rays());
 }
 
 TEST(BakeCache, AReBakeTracesShadowRaysTowardsTheChangedSourcesAlone) {
