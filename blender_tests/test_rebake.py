@@ -7,6 +7,9 @@ its ceiling opening and a soft point lamp, baked at Medium.
   are, to the bit, those of a bake from scratch (bake(reuse=False));
 - after moving one of the box's vertices, or with a modifier that changes the mesh, it bakes the
   geometry afresh and says why;
+- with the box's walls cut into small faces, which the bake solves together and no larger than half
+  their distance from a lamp, the lamp brought down to the floor: the re-bake merges them again and
+  computes their form factors anew (the summary says so), and its colours are a bake from scratch's;
 - the batch command given two scenes that show the same box, one without the lamp, bakes the
   second over the first one's geometry."""
 
@@ -26,12 +29,14 @@ args = harness.arguments()
 addon = harness.install_addon(args.addon_zip)
 
 REUSED = "Reused the geometry of the previous bake ("
+MERGED_AGAIN = ("Reused the geometry of the previous bake, its form factors computed again (the faces beside the moved "
+                "lamps merge otherwise) (")
 CHANGED = "Baked the geometry afresh (the geometry, or a setting that chooses the elements, changed)"
 
 
-def make_scene():
+def make_scene(cells=6):
     scenes.clear_scene()
-    scenes.cornell_box(light="MESH", cells=6)
+    scenes.cornell_box(light="MESH", cells=cells)
     light = bpy.data.lights.new("Lamp", "POINT")
     light.energy, light.shadow_soft_size = 20.0, 0.05
     lamp = bpy.data.objects.new("Lamp", light)
@@ -86,6 +91,18 @@ def test_a_rebake_after_a_lighting_edit_reuses_the_geometry_and_equals_a_bake_fr
         operator_bake("Rebake")  # the cache again, for the next edit (the fresh bake let it go)
 
 
+def test_a_lamp_brought_beside_merged_faces_merges_them_again():
+    make_scene(cells=48)  # faces of 2.1 cm, under half Medium's elements of 5.7 cm: pairs merge
+    operator_bake("First")
+    bpy.data.objects["Lamp"].location = (0.3, 0.3, 0.05)
+    colours, cost = operator_bake("Rebake")
+    assert MERGED_AGAIN in cost, cost
+    fresh = fresh_bake("Fresh")
+    worst = float(np.abs(colours - fresh).max())
+    print("the lamp brought to the floor: re-bake against a bake from scratch, largest difference %.3g" % worst)
+    assert np.array_equal(colours, fresh), worst
+
+
 def test_a_change_of_geometry_bakes_afresh():
     make_scene()
     operator_bake("First")
@@ -123,5 +140,6 @@ def test_the_batch_command_bakes_lighting_variants_over_one_geometry():
 
 
 harness.run(test_a_rebake_after_a_lighting_edit_reuses_the_geometry_and_equals_a_bake_from_scratch,
+            test_a_lamp_brought_beside_merged_faces_merges_them_again,
             test_a_change_of_geometry_bakes_afresh,
             test_the_batch_command_bakes_lighting_variants_over_one_geometry)
