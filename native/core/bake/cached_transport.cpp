@@ -113,15 +113,13 @@ CachedTransport acquire_transport(const SceneInput& input, const BakeSettings& s
     if (cached.transport != nullptr) {
         const auto start = std::chrono::steady_clock::now();
         refresh_materials(input, *cached.transport, progress);
-        cached.transport->seconds_elements = seconds_since(start);
-        cached.transport->seconds_form_factors = 0.0;
-        cached.use.reused = true;
         // The clusters beside a point lamp follow its distance, which the key does not hold.
         Clusters clusters = uniform_clusters(cached.transport->build, input, settings);
-        if (clusters.of_element != cached.transport->clusters.of_element) {
-            merge_again(*cached.transport, std::move(clusters), settings, progress);
-            cached.use.merged_again = true;
-        }
+        cached.use.merged_again = clusters.of_element != cached.transport->clusters.of_element;
+        cached.transport->seconds_elements = seconds_since(start);
+        cached.transport->seconds_form_factors = 0.0;
+        if (cached.use.merged_again) merge_again(*cached.transport, std::move(clusters), settings, progress);
+        cached.use.reused = true;
     } else {
         cached.transport = std::make_unique<UniformTransport>(uniform_transport(input, settings, progress));
     }

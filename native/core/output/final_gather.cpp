@@ -16,6 +16,7 @@
 #include "output/kept_direct_light.h"
 #include "output/point_reads.h"
 #include "transport/lamp_points.h"
+#include "transport/near_field.h"
 #include "transport/world_light.h"
 #include "visibility/ray_tracer.h"
 #include "visibility/shadow_ray.h"
@@ -715,8 +716,10 @@ bool near_lamp(const Lights& lights, const Elements& elements, std::size_t e, do
     const glm::dvec3 normal(elements.normal[e]), centre(elements.centre[e]);
     return std::any_of(lights.points.begin(), lights.points.end(), [&](const PointLight& lamp) {
         const glm::dvec3 position(lamp.position);
-        return glm::dot(normal, position - centre) > 0.0 &&
-               distance_to_element(elements, e, position) < 0.5 * size + double(lamp.radius);
+        const double near = 0.5 * size + double(lamp.radius);
+        // The element lies within `size` of its centre: a lamp farther than that and `near` is not beside it.
+        return glm::dot(normal, position - centre) > 0.0 && glm::length(position - centre) < size + near &&
+               distance_to_element(elements, e, position) < near;
     });
 }
 
@@ -730,12 +733,8 @@ std::vector<std::size_t> near_lit_elements(const Elements& elements, const std::
     std::vector<std::size_t> near;
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (elements.is_back(e) || max_channel(emitted[e]) > 0.0) continue;
-        const int count = elements.corner_count(e);
         const glm::dvec3 centre(elements.centre[e]);
-        double size = 0.0;
-        for (int k = 0; k < count; ++k)
-            size = std::max(size,
-                            glm::length(glm::dvec3(elements.vertices[std::size_t(elements.corners[e][k])]) - centre));
+        const double size = circumradius(elements, int32_t(e));
         const bool near_lit = std::any_of(runs.begin(), runs.end(), [&](const EmitterRun& run) {
             const double distance = glm::dot(run.normal, centre - run.point);
             return distance > 0.0 && distance < 0.5 * size && glm::length(centre - run.centre) < run.radius + size;
