@@ -1172,12 +1172,16 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     CornerWedges wedges;
     std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
     KnownDirectLight field_direct;
+    std::vector<Rgb> field_error;  // the statistics' field_power_error
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
         const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics, field_direct);
+        // Before the near lit elements' corners are scaled: how far their corners' light was from it
+        // tells how little of its shape within them they hold.
+        field_error = field_power_error(elements, field, radiance);
         keep_near_lit_elements_power(elements, radiance, near_lit, field);
         meter.add_to(cost.field);
         // The wedges: four times the field's rays, and a quarter of the shadow rays at each table
@@ -1189,7 +1193,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     }
-    const std::vector<Rgb> field_error = field_power_error(elements, field, radiance);
+    if (field_error.empty()) field_error = field_power_error(elements, field, radiance);
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
     // Each point's direct light comes from the first pass.
     PointValues p{std::vector<Rgb>(points.size(), Rgb(0.0)),

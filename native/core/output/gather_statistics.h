@@ -95,7 +95,9 @@ std::vector<Rgb> field_power_error(const Elements& elements, const std::vector<R
 /// The statistics at the output corners. `known` and `slot_point`: per element corner slot (4 an
 /// element), whether the gather wrote it and which gathered point's values it took; `point`: each
 /// gathered point's; `solution_light`: the interpolated light arriving before the gather;
-/// `field_error`: the field's field_power_error; `radiance` and `emitted`: each element's solved
+/// `field_error`: the field's field_power_error (on elements whose corners the gather scales to
+/// their solved light beside a lamp or emitter, as the gathered corners had it before: their shape
+/// within the element is no better known than that); `radiance` and `emitted`: each element's solved
 /// radiance and own emission.
 GatherStatistics gather_statistics(const Elements& elements, const int32_t* material, float hard_edge_angle,
                                    const std::vector<uint8_t>& known, const std::vector<int32_t>& slot_point,
