@@ -406,6 +406,47 @@ TEST(FinalGather, AWallBesideALampOverACoarseFloorTakesItsExactReflection) {
     }
 }
 
+/// The solid angle of the rectangle [x0, x1] x [y0, y1] in the plane z = 0 seen from (0, 0, h):
+/// the signed sum of the rectangles from the foot to its corners, atan(x y / (h sqrt(h^2 + x^2 + y^2))).
+double rectangle_solid_angle(double x0, double x1, double y0, double y1, double h) {
+    auto from_foot = [h](double x, double y) { return std::atan(x * y / (h * std::sqrt(h * h + x * x + y * y))); };
+    return from_foot(x1, y1) - from_foot(x0, y1) - from_foot(x1, y0) + from_foot(x0, y0);
+}
+
+TEST(FinalGather, AnElementBesideALampReportsHowFarItsCornersWereFromItsLight) {
+    // The 1 m face under a point lamp 40 cm high: its corners' light, I h / d^3 at each, spread
+    // linearly over it, is 0.39 of the light it receives, I times its solid angle; the field keeps
+    // the latter (the lamp's exact mean), and the statistics the estimate reads keep the difference,
+    // which tells how little of the light's shape the corners hold.
+    const double rho = 0.5, I = 1.0, h = 0.4;
+    const glm::dvec3 P(0.7, 0.3, h);
+    test::SceneArrays s;
+    s.add_grid(Vec3(0, -2, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), 4, Rgb(rho));
+    BakeSettings settings = gather_settings(1.0f, true);
+    settings.final_gather.field_rays = 64;  // the field gathered at the vertices: each its exact direct light
+    PointLight lamp;
+    lamp.position = Vec3(P);
+    lamp.intensity = Rgb(I);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(s.input(), settings);
+    ASSERT_TRUE(r.gather_statistics.has_value());
+    const Elements& elements = r.build.elements;
+    std::size_t under = elements.size();
+    for (std::size_t e = 0; e < elements.size(); ++e)
+        if (glm::distance(elements.centre[e], Vec3(0.5f, 0.5f, 0.0f)) < 1e-4f) under = e;
+    ASSERT_LT(under, elements.size());
+    double corners = 0.0;
+    for (const glm::dvec3 X : {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(1, 1, 0), glm::dvec3(0, 1, 0)})
+        corners += I * h / std::pow(glm::length(P - X), 3.0) / 4.0;
+    const double mean = I * rectangle_solid_angle(-0.7, 0.3, -0.3, 0.7, h);
+    const double expected = rho / M_PI * (corners - mean);
+    const double reported = r.gather_statistics->element_field_error[under].g;
+    std::printf("corners' light %.4f, its mean %.4f: field error %.5f, reported %.5f\n", corners, mean, expected,
+                reported);
+    EXPECT_NEAR(reported / expected, 1.0, 1e-3);
+    EXPECT_NEAR(r.gather_statistics->element_reflected[under].g, rho / M_PI * mean, 1e-3 * rho / M_PI * mean);
+}
+
 TEST(FinalGather, CornersLyingOnAnotherFaceAreBlackAsInCycles) {
     // A 2 m square of its own lies on the floor (the same plane, facing up, as duplicate faces of
     // game levels do), under a point lamp. Cycles' rays leave a point without an offset and meet
