@@ -708,40 +708,23 @@ double distance_to_element(const Elements& elements, std::size_t e, const glm::d
     return std::sqrt(height * height + (inside ? 0.0 : beside * beside));
 }
 
-/// Element e's longest edge.
-double longest_edge(const Elements& elements, std::size_t e) {
-    const int count = elements.corner_count(e);
-    double longest = 0.0;
-    for (int k = 0; k < count; ++k)
-        longest = std::max(longest,
-                           double(glm::distance(elements.vertices[std::size_t(elements.corners[e][k])],
-                                                elements.vertices[std::size_t(elements.corners[e][(k + 1) % count])])));
-    return longest;
-}
-
-/// A point lamp nearer to an element than this many of its longest edges is beside it (near_lamp).
-constexpr double kLampBesideEdges = 2.0;
-
-/// Whether a point or spot lamp lies in front of element e nearer to it than twice its longest edge
-/// and the lamp's radius: a lamp hung a few centimetres from a wall or inside a fixture, and the
-/// elements around it. The lamp's irradiance falls as the cube of the distance: linear between
-/// corners one and two edges from the lamp's foot it is 1.5 times its mean there, and a corner under
-/// the lamp spreads the lamp's peak over the element; the element's solved light is its exact mean
-/// (transport/lights.h). The distance is to the element, not its centre.
-bool near_lamp(const Lights& lights, const Elements& elements, std::size_t e) {
+/// Whether a point or spot lamp lies in front of element e (`size` from its centre to its farthest
+/// corner) nearer to it than half its size: a lamp hung a few centimetres from a wall or inside a
+/// fixture. The distance is to the element, not its centre: an element one of whose corners lies
+/// under the lamp holds the lamp's peak there.
+bool near_lamp(const Lights& lights, const Elements& elements, std::size_t e, double size) {
     const glm::dvec3 normal(elements.normal[e]), centre(elements.centre[e]);
-    const double edge = longest_edge(elements, e);
     return std::any_of(lights.points.begin(), lights.points.end(), [&](const PointLight& lamp) {
         const glm::dvec3 position(lamp.position);
-        const double near = kLampBesideEdges * edge + double(lamp.radius);
-        // The element lies within `edge` of its centre: a lamp farther than that and `near` is not beside it.
-        return glm::dot(normal, position - centre) > 0.0 && glm::length(position - centre) < edge + near &&
+        const double near = 0.5 * size + double(lamp.radius);
+        // The element lies within `size` of its centre: a lamp farther than that and `near` is not beside it.
+        return glm::dot(normal, position - centre) > 0.0 && glm::length(position - centre) < size + near &&
                distance_to_element(elements, e, position) < near;
     });
 }
 
-/// Elements lit by an emitter nearer to them than half their size (a ceiling beside a panel hung
-/// 1 cm under it) or beside a lamp (near_lamp): that light changes on the scale of the source's
+/// Elements lit by an emitter or lamp nearer to them than half their size (a ceiling beside a panel
+/// hung 1 cm under it, a wall beside a lamp): that light changes on the scale of the source's
 /// distance, which the element's corners do not resolve (the vertex at the panel's edge holds half
 /// its back side's light, the next vertex none, and the line between them is far too bright; a
 /// corner next to a lamp holds its peak, the others almost nothing).
@@ -756,7 +739,7 @@ std::vector<std::size_t> near_lit_elements(const Elements& elements, const std::
             const double distance = glm::dot(run.normal, centre - run.point);
             return distance > 0.0 && distance < 0.5 * size && glm::length(centre - run.centre) < run.radius + size;
         });
-        if (near_lit || near_lamp(lights, elements, e)) near.push_back(e);
+        if (near_lit || near_lamp(lights, elements, e, size)) near.push_back(e);
     }
     return near;
 }

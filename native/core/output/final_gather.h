@@ -37,11 +37,10 @@
 /// The field the rays read: the solution interpolated to the elements' corners or, with
 /// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at
 /// each vertex, indirect from the solution), so that the solution's error reaches the output only
-/// after one more reflection. Elements lit by an emitter nearer to them than half their size (a
-/// ceiling beside a panel hung just under it), or by a point lamp nearer than twice their longest
-/// edge (a floor 5 cm under a lamp, the walls around a lamp hung in a room's corner), keep their
-/// solved light instead, their corners scaled to it: that light changes on the scale of the
-/// source's distance, which their corners do not resolve. So does every later writing of gathered light into the field
+/// after one more reflection. Elements lit by an emitter or lamp nearer to them than half their size
+/// (a ceiling beside a panel hung just under it, a floor 5 cm under a lamp) keep their solved light
+/// instead, their corners scaled to it: that light changes on the scale of the source's distance,
+/// which their corners do not resolve. So does every later writing of gathered light into the field
 /// (the output points after the first pass, the seams' solve).
 ///
 /// Wedges: where an occluder stands on a surface, the light next to the vertex turns with the
