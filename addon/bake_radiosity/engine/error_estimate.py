@@ -12,7 +12,9 @@ core's output/gather_statistics.h), in three parts added as squares:
   - the field's light: the field the rays read, blended between element corners, need not carry
     the light the solve found on each element (a lamp's hot spot between the vertices); the share
     of the light it misses or adds, area-weighted over the elements, comes to the corners' indirect
-    light in proportion.
+    light in proportion. Elements right beside a lamp or emitter, whose corners the gather scales to
+    their solved light, count with what their corners missed or added before that: the light's
+    shape within them is no better known.
 The solve's bound (solve_bound) is given apart, and light created from nothing (more absorbed than
 emitted) puts a floor under the estimate. What the bake cannot see is not in it: where the gather
 and the solution make the same error (docs/accuracy.md, "The summary after a bake", measures the

@@ -4,6 +4,7 @@
 /// corners at a block's corner lit from the side Cycles bakes them from, the exact light on both
 /// sides of a contact line, the field gathered at the elements' vertices under a coarse solution,
 /// the light turning around a fin's foot, corners inside a wall or on another face black as in Cycles,
+/// how far an element's corners beside a lamp were from its exact light (what the estimate reads),
 /// the furnace at every corner (seams of a closed box), determinism, and cancelling.
 #include "bake/bake.h"
 
@@ -375,7 +376,7 @@ double rectangle_solid_angle(double x0, double x1, double y0, double y1, double 
 
 TEST(FinalGather, AnElementBesideALampReportsHowFarItsCornersWereFromItsLight) {
     // The 1 m face under a point lamp 30 cm high, nearer than half its size: its corners' light,
-    // I h / d^3 at each, spread linearly over it, is a third of the light it receives, I times its
+    // I h / d^3 at each, spread linearly over it, is 0.30 of the light it receives, I times its
     // solid angle; the field keeps the latter (the lamp's exact mean), and the statistics the
     // estimate reads keep the difference, which tells how little of the light's shape the corners hold.
     const double rho = 0.5, I = 1.0, h = 0.3;
