@@ -1175,8 +1175,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         const Gatherer wedge_gatherer(scene, field, wedge_settings);
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
+    } else {
+        field_error = field_power_error(elements, field, radiance);  // the interpolated solution, unscaled
     }
-    if (field_error.empty()) field_error = field_power_error(elements, field, radiance);
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
     // Each point's direct light comes from the first pass.
     PointValues p{std::vector<Rgb>(points.size(), Rgb(0.0)),
