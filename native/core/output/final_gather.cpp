@@ -10,6 +10,7 @@
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
+#include "output/field_bubbles.h"
 #include "output/flat_places.h"
 #include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
@@ -352,13 +353,14 @@ private:
     const PointReads& point_reads(const Vec3& origin, const Vec3& normal, uint32_t seed, bool gradients,
                                   PointReads& own) const {
         const bool with_wedges = wedges_ != nullptr && !wedges_->empty();
-        const uint32_t read =
-            (with_wedges ? GatherHits::kWithWedges : 0U) | (gradients ? GatherHits::kWithGradients : 0U);
+        const bool bubbles = has_bubbles(corner_field_, elements_);
+        const uint32_t read = (with_wedges ? GatherHits::kWithWedges : 0U) |
+                              (gradients ? GatherHits::kWithGradients : 0U) | (bubbles ? GatherHits::kWithBubbles : 0U);
         const GatherHits::Key key = GatherHits::key(origin, normal, seed, grid_, GatherHits::Kind::Indirect, read);
         GatherHits* hits = scene_.kept.hits;
         if (hits != nullptr)
             if (const PointReads* kept = hits->find_reads(key)) return *kept;
-        own = fold_reads(elements_, scene_.emitted, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients},
+        own = fold_reads(elements_, scene_.emitted, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients, bubbles},
                          trace_rays(origin, normal, seed));
         if (hits != nullptr)
             if (const PointReads* kept = hits->record_reads(key, own)) return *kept;
@@ -583,7 +585,9 @@ private:
     Rgb radiance_near(const hr::Visibility::Hit& hit) const {
         const std::size_t h = std::size_t(hit.patch);
         if (elements_.is_back(h)) return scene_.radiance[h];  // not written, so no corner colours
-        return blend_corners(elements_, h, &corner_field_[4 * h], hit.u, hit.v);
+        const Rgb blended = blend_corners(elements_, h, &corner_field_[4 * h], hit.u, hit.v);
+        if (!has_bubbles(corner_field_, elements_)) return blended;
+        return blended + element_bubble(elements_, h, hit.u, hit.v) * corner_field_[bubble_slot(elements_, h)];
     }
 
     /// What the light around the hit element's corners on seams adds (corner_wedges.h).
@@ -1150,7 +1154,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     // light is linear in the field at the seam vertices, which are such points too (solve_seams). Passes alone converge
     // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
     // of its hemisphere.
-    std::vector<Rgb> field = colors.element_corner;
+    std::vector<Rgb> solution = colors.element_corner;  // with the bubbles that keep each element's solved mean
+    append_bubbles(elements, solution_bubbles(elements, colors.element_corner, radiance), solution);
+    std::vector<Rgb> field = solution;
     const std::vector<std::size_t> near_lit = near_lit_elements(elements, emitted, runs, lights);
     CornerWedges wedges;
     std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
@@ -1159,11 +1165,14 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
-        const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
+        const Gatherer field_gatherer(scene, solution, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics, field_direct);
-        // Before the near lit elements' corners are scaled: how far their corners' light was from it
-        // tells how little of its shape within them they hold.
+        // The lamps' light the corners' blend misses; then, before the near lit elements' corners are
+        // scaled, how far their corners' light was from it tells how little of its shape they hold.
+        append_bubbles(elements,
+                       lamp_bubbles(elements, lights, visibility, near_lit, kept.direct, scene.signatures, progress),
+                       field);
         field_error = field_power_error(elements, field, radiance);
         keep_near_lit_elements_power(elements, radiance, near_lit, field);
         meter.add_to(cost.field);
@@ -1176,7 +1185,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     } else {
-        field_error = field_power_error(elements, field, radiance);  // the interpolated solution, unscaled
+        // The interpolated solution's corners alone: how far their blend was from the solved light
+        // tells how little of its shape within the elements they hold.
+        field_error = field_power_error(elements, colors.element_corner, radiance);
     }
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
     // Each point's direct light comes from the first pass.

@@ -17,7 +17,7 @@ GatherHits::Key GatherHits::key(const Vec3& origin, const Vec3& normal, uint32_t
     using detail::float_bits;
     return Key{{float_bits(origin.x), float_bits(origin.y), float_bits(origin.z), float_bits(normal.x),
                 float_bits(normal.y), float_bits(normal.z), seed,
-                (uint32_t(grid) << 4) | (read << 2) | uint32_t(kind)}};
+                (uint32_t(grid) << 5) | (read << 2) | uint32_t(kind)}};
 }
 
 std::size_t GatherHits::KeyHash::operator()(const Key& key) const { return detail::WordsHash()(key.words); }

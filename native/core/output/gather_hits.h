@@ -36,8 +36,8 @@ public:
     /// Which rays: the gather's indirect rays (after a front seen from behind became its back side)
     /// or the probe rays that decide which points gather (fronts alone).
     enum class Kind : uint32_t { Indirect = 0, Probe = 1 };
-    /// How a folded set is read (bits): with the wedge tables, with the gradients.
-    static constexpr uint32_t kWithWedges = 1, kWithGradients = 2;
+    /// How a folded set is read (bits): with the wedge tables, with the gradients, with the bubbles.
+    static constexpr uint32_t kWithWedges = 1, kWithGradients = 2, kWithBubbles = 4;
 
     /// A ray set: its origin and normal (bits), seed, grid, kind and how it is read.
     struct Key {

@@ -4,6 +4,7 @@
 
 #include "common/stratified.h"
 #include "output/corner_blend.h"
+#include "output/field_bubbles.h"
 #include "output/interpolation.h"
 
 #include <algorithm>
@@ -50,8 +51,10 @@ std::vector<Rgb> field_power_error(const Elements& elements, const std::vector<R
     for (std::size_t e = 0; e < elements.size(); ++e) {
         if (elements.is_back(e)) continue;  // read as solved, not through the field
         const int count = elements.corner_count(e);
-        for (int k = 0; k < count; ++k) error[e] += field[4 * e + std::size_t(k)];
-        error[e] = error[e] / double(count) - radiance[e];
+        const ElementMeans means = element_means(elements, e);
+        for (int k = 0; k < count; ++k) error[e] += means.corner[k] * field[4 * e + std::size_t(k)];
+        if (has_bubbles(field, elements)) error[e] += means.bubble * field[bubble_slot(elements, e)];
+        error[e] -= radiance[e];
     }
     return error;
 }

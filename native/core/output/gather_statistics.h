@@ -83,12 +83,11 @@ private:
 std::vector<Rgb> noise_probe(const Elements& elements, const std::vector<PointStatistics>& field_point,
                              const std::vector<int32_t>& place);
 
-/// Per element, the mean over it of `field` (4 an element: its corners' values, blended over it as
-/// the rays read them) less its solved `radiance`: where it is not 0, the field does not carry the
-/// light the solve found there (a lamp's hot spot between the vertices, flattened by interpolation
-/// or missed by the vertices' gather). The solve's light on an element is exact for the lamps
-/// (their flux is kept element by element, lights.h). 0 on emitters' back sides, which the rays
-/// read as solved.
+/// Per element, the mean over it of `field` (its corners' values blended over it as the rays read
+/// them, and its bubble where the field carries bubbles: corner_blend.h) less its solved `radiance`: where it is not 0,
+/// the field does not carry the light the solve found there (a lamp's hot spot between the vertices, flattened by
+/// interpolation or missed by the vertices' gather). The solve's light on an element is exact for the lamps (their flux
+/// is kept element by element, lights.h). 0 on emitters' back sides, which the rays read as solved.
 std::vector<Rgb> field_power_error(const Elements& elements, const std::vector<Rgb>& field,
                                    const std::vector<Rgb>& radiance);
 

@@ -24,7 +24,7 @@ class TermIndex {
 public:
     void prepare(const Elements& elements, const CornerWedges* wedges) {
         const std::size_t n = elements.size();
-        offset_ = {0, 4 * n, 5 * n, 5 * n + (wedges != nullptr ? wedges->entries() : 0)};
+        offset_ = {0, 5 * n, 6 * n, 6 * n + (wedges != nullptr ? wedges->entries() : 0)};
         const std::size_t size = offset_[3] + n;
         if (position_.size() < size) position_.resize(size, -1);
         read_.clear();
@@ -93,10 +93,11 @@ bool may_emit(const Elements& elements, const std::vector<Rgb>& emitted, std::si
     return elements.has_twin(e) || !elements.blocks(e) || max_channel(emitted[e]) > 0.0;
 }
 
-/// Adds one front hit's reads: the field's corner slots (or a back side's solved value), the wedge
-/// tables' values, less its emission; the slots read right at a seam (`seam`) also as such.
+/// Adds one front hit's reads: the field's corner slots and, with `bubbles`, its bubble (or a back
+/// side's solved value), the wedge tables' values, less its emission; the corner slots read right at
+/// a seam (`seam`) also as such (a bubble is 0 there, and the seams' solve does not write it).
 void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, const CornerWedges* wedges,
-                    const hr::Visibility::Hit& hit, bool seam, const RayWeights& ray, TermIndex& index) {
+                    const hr::Visibility::Hit& hit, bool seam, bool bubbles, const RayWeights& ray, TermIndex& index) {
     const std::size_t h = std::size_t(hit.patch);
     if (elements.is_back(h)) {
         add(index, Source::BackRadiance, h, 1.0, ray);
@@ -106,6 +107,8 @@ void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, c
             Folded& term = add(index, Source::FieldSlot, 4 * h + std::size_t(k), w[std::size_t(k)], ray);
             if (seam) term.seam += w[std::size_t(k)];
         }
+        if (bubbles)
+            add(index, Source::FieldSlot, bubble_slot(elements, h), element_bubble(elements, h, hit.u, hit.v), ray);
     }
     if (wedges != nullptr) {
         thread_local std::vector<std::pair<int32_t, double>> table;
@@ -145,7 +148,8 @@ PointReads fold_reads(const Elements& elements, const std::vector<Rgb>& emitted,
         reads.at_seam += seam;
         const RayWeights ray{half_sign(int(i), grid.grid), grid.gradients ? &gradient.rotation[i] : nullptr,
                              grid.gradients ? &gradient.translation[i] : nullptr};
-        fold_front_hit(elements, emitted, wedges, hit, seam && !elements.is_back(std::size_t(hit.patch)), ray, index);
+        fold_front_hit(elements, emitted, wedges, hit, seam && !elements.is_back(std::size_t(hit.patch)), grid.bubbles,
+                       ray, index);
     }
     index.finish(reads, grid.gradients);
     reads.back_distances.shrink_to_fit();
@@ -179,7 +183,7 @@ ReadSums evaluate(const PointReads& reads, const ReadValues& values) {
         const Rgb v = value_of(term, values);
         out.sum += double(term.sum) * v;
         out.difference += double(term.difference) * v;
-        if (values.probe != nullptr && term.source() == Source::FieldSlot)
+        if (values.probe != nullptr && term.source() == Source::FieldSlot && term.index() < values.probe->size())
             out.probe += double(term.sum) * (*values.probe)[term.index()];
         if (!gradients) continue;
         const glm::dvec2 rotation(reads.gradients[t].rotation), translation(reads.gradients[t].translation);

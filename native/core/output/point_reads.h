@@ -32,14 +32,14 @@ namespace radiosity::detail {
 struct PointReads {
     /// What a term reads.
     enum class Source : uint32_t {
-        FieldSlot = 0,     ///< the field at slot 4 e + k (the element's corner colours)
+        FieldSlot = 0,     ///< the field at slot 4 e + k (the element's corner colours) or bubble_slot (corner_blend.h)
         BackRadiance = 1,  ///< an emitter's back side's solved radiance, per element
         Wedge = 2,         ///< a wedge table's value (CornerWedges::reflected_entry)
         Emitted = 3,       ///< an element's own emission (taken away: weight -1 a ray), of elements that may emit
     };
     /// A value read and its weights, summed over the rays in double precision and kept in single:
     /// 12 bytes a term, where a kept hit takes 16. The index has 30 bits: a scene's elements (at
-    /// most ElementLimits::max_elements) have 4 slots each, far fewer.
+    /// most ElementLimits::max_elements) have 5 slots each (4 corners and a bubble), far fewer.
     struct Term {
         uint32_t read = 0;        ///< the source in the top two bits, the slot, element or table value below
         float sum = 0.0f;         ///< weight in the rays' sum
@@ -77,6 +77,7 @@ struct RayGrid {
     int grid = 1;
     float seam = 0.0f;
     bool gradients = false;  ///< fold the gradients' weights too
+    bool bubbles = false;    ///< read the elements' bubbles too (the field carries them: corner_blend.h)
 };
 
 /// `hits` (ray i in the order cast) folded into weights; `emitted`: each element's own emission
@@ -87,7 +88,7 @@ PointReads fold_reads(const Elements& elements, const std::vector<Rgb>& emitted,
 /// The values a point's reads are evaluated on.
 struct ReadValues {
     const Elements& elements;
-    const std::vector<Rgb>& field;     ///< 4 an element
+    const std::vector<Rgb>& field;     ///< 4 an element, then a bubble an element if folded with them
     const std::vector<Rgb>& radiance;  ///< solved, per element
     const std::vector<Rgb>& emitted;   ///< own emission, per element
     const CornerWedges* wedges;        ///< null: none

@@ -408,6 +408,76 @@ TEST(FinalGather, AnElementBesideALampReportsHowFarItsCornersWereFromItsLight) {
     EXPECT_NEAR(r.gather_statistics->element_reflected[under].g, rho / M_PI * mean, 1e-3 * rho / M_PI * mean);
 }
 
+TEST(FinalGather, TheFieldCarriesALampsExactLightOverEveryElement) {
+    // A floor of 1 m faces under a point lamp 90 cm over the middle of one: farther than half its
+    // size, so its corners keep their own light, I h / d^3, 0.69 of the light it receives (I times
+    // its solid angle); the faces beyond hold less than their corners' blend (the light falls as
+    // 1 / d^3). With each element's bubble the field's mean over every face is the lamp's exact light
+    // there, which is what the floor reflects into the rest of the scene.
+    const double rho = 0.5, I = 1.0, h = 0.9;
+    const glm::dvec3 P(0.5, 0.5, h);
+    test::SceneArrays s;
+    s.add_grid(Vec3(-2, -2, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), 4, Rgb(rho));
+    BakeSettings settings = gather_settings(1.0f, true);
+    settings.final_gather.field_rays = 64;
+    PointLight lamp;
+    lamp.position = Vec3(P);
+    lamp.intensity = Rgb(I);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(s.input(), settings);
+    ASSERT_TRUE(r.gather_statistics.has_value());
+    const Elements& elements = r.build.elements;
+    ASSERT_EQ(elements.size(), 16u);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const glm::dvec3 c(elements.centre[e]);
+        const double exact =
+            rho / M_PI * I *
+            rectangle_solid_angle(c.x - 0.5 - P.x, c.x + 0.5 - P.x, c.y - 0.5 - P.y, c.y + 0.5 - P.y, h);
+        const double solved = r.gather_statistics->element_reflected[e].g;
+        const double field = solved + r.gather_statistics->element_field_error[e].g;
+        std::printf("face at (%+.1f, %+.1f): exact %.5f, solved %.5f, field %.5f\n", c.x, c.y, exact, solved, field);
+        EXPECT_NEAR(solved / exact, 1.0, 1e-3);
+        EXPECT_NEAR(field / exact, 1.0, 2e-3);
+    }
+}
+
+TEST(FinalGather, AWallBesideALampOverTheMiddleOfAFloorFaceTakesItsExactReflection) {
+    // A floor of 1 m faces (reflectance 0.5) with a point lamp 60 cm over the middle of one, next to
+    // a wall of 0.25 m faces that reflects nothing: the light arriving at the wall is the lamp's and
+    // one reflection off the floor, exact by quadrature. The corners of the face under the lamp hold
+    // 0.45 of the light it receives: read as their blend alone, the wall would get too little of it.
+    const double rho = 0.5, I = 1.0, h = 0.6;
+    const glm::dvec3 P(0.5, 0.0, h);
+    test::SceneArrays s;
+    s.add_grid(Vec3(0, -2, 0), Vec3(3, 0, 0), Vec3(0, 4, 0), 3, Rgb(rho));  // the floor: 3 x 3 faces of 1 x 1.33 m
+    s.add_grid(Vec3(0, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 2), 8, Rgb(0.0));  // the wall, normal +x
+    BakeSettings settings = gather_settings(2.0f, true);
+    settings.final_gather.rays = 3136;
+    settings.final_gather.field_rays = 64;
+    settings.final_gather.shadow_rays = 256;
+    settings.final_gather.cache_accuracy = 0.15;
+    PointLight lamp;
+    lamp.position = Vec3(P);
+    lamp.intensity = Rgb(I);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(s.input(), settings);
+    for (const glm::dvec3 X :
+         {glm::dvec3(0, 0, 0.5), glm::dvec3(0, 0, 1.0), glm::dvec3(0, -1.0, 0.5), glm::dvec3(0, 1.5, 0.25)}) {
+        const glm::dvec3 toLamp = P - X;
+        const double direct = I * toLamp.x / std::pow(glm::length(toLamp), 3.0);
+        const double reflected = floor_light_at(X, P, rho, I, 0.0, 3.0, -2.0, 2.0, 2e-3);
+        const double expected = (direct + reflected) / M_PI;
+        const std::vector<std::size_t> corners = corners_at(s, Vec3(X));
+        ASSERT_FALSE(corners.empty());
+        for (const std::size_t c : corners) {
+            const double light = r.light_colors.input_corner[c].g;
+            std::printf("wall at (%.2f, %.2f): light %.5f, exact %.5f (direct %.5f), %+.2f%%\n", X.y, X.z, light,
+                        expected, direct / M_PI, 100.0 * (light / expected - 1.0));
+            EXPECT_NEAR(light / expected, 1.0, 0.02);
+        }
+    }
+}
+
 TEST(FinalGather, CornersLyingOnAnotherFaceAreBlackAsInCycles) {
     // A 2 m square of its own lies on the floor (the same plane, facing up, as duplicate faces of
     // game levels do), under a point lamp. Cycles' rays leave a point without an offset and meet
