@@ -148,6 +148,7 @@ def progress_text(info, tolerance):
     phase = {"form_factors": "form factors", "lights": "lamps", "elements": "preparing", "output": "output mesh",
              "gather wedges": "light around the seams' corners",
              "gather field": "final gather at the elements' vertices", "gather": "final gather",
+             "gather lamp bubbles": "lamps' light within the elements",
              "gather probes": "final gather's probe rays",
              "gather seams": "final gather at seams",
              "world": "world light", "textures": "texture means",

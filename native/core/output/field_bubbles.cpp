@@ -169,7 +169,7 @@ std::vector<Rgb> lamp_bubbles(const Elements& elements, const Lights& lights, co
     if (lights.points.empty()) return bubbles;
     std::vector<uint8_t> skipped(elements.size(), 0);
     for (const std::size_t e : skip) skipped[e] = 1;
-    parallel_rows("lamp bubbles", elements.size(), 64, 0, progress, [&](std::size_t e) {
+    parallel_rows("gather lamp bubbles", elements.size(), 64, 0, progress, [&](std::size_t e) {
         if (skipped[e] || elements.is_back(e) || !(max_channel(elements.reflectance[e]) > 0.0f)) return true;
         const ElementCorners c = corners_of(elements, e);
         const ElementMeans means = element_means(elements, e);

@@ -62,7 +62,7 @@ std::vector<Rgb> solution_bubbles(const Elements& elements, const std::vector<Rg
 /// Shadow rays: each lamp's own soft-shadow rays (point_rays) at the element's corners, only where a
 /// bubble is needed, each lamp's light there kept in `kept` (may be null) under its signature in
 /// `signatures`, so that a re-bake traces the changed lamps' alone (kept_direct_light.h). Throws
-/// Cancelled through `progress` (phase "lamp bubbles").
+/// Cancelled through `progress` (phase "gather lamp bubbles").
 std::vector<Rgb> lamp_bubbles(const Elements& elements, const Lights& lights, const hr::Visibility& visibility,
                               const std::vector<std::size_t>& skip, KeptDirectLight* kept,
                               const SourceSignatures& signatures, const ProgressFn& progress);
