@@ -33,7 +33,7 @@ Box element_box(const Elements& elements, std::size_t e, float tolerance) {
 }  // namespace
 
 CoincidentFaces::CoincidentFaces(const Elements& elements, float tolerance)
-    : elements_(elements), tolerance_(tolerance), partners_(elements.size()) {
+    : elements_(elements), partners_(elements.size()) {
     std::vector<Box> boxes;
     std::vector<int32_t> element;  // of each box: the fronts (a back side lies on its own front)
     for (std::size_t e = 0; e < elements.size(); ++e)
@@ -70,8 +70,7 @@ bool CoincidentFaces::inside(const Vec3& x, std::size_t h) const {
     for (int k = 0; k < count; ++k) {
         const glm::dvec3 a(elements_.vertices[std::size_t(elements_.corners[h][k])]);
         const glm::dvec3 b(elements_.vertices[std::size_t(elements_.corners[h][(k + 1) % count])]);
-        const double length = glm::length(b - a);
-        if (!(glm::dot(glm::cross(b - a, p - a), n) > tolerance_ * length)) return false;
+        if (!(glm::dot(glm::cross(b - a, p - a), n) > 0.0)) return false;
     }
     return true;
 }

@@ -21,7 +21,8 @@ public:
     CoincidentFaces(const Elements& elements, float tolerance);
 
     /// Whether `x`, a point of element `e`, lies inside an element of another polygon that lies on
-    /// `e` (farther than `tolerance` inside each of its edges).
+    /// `e`: on the inner side of each of its edges, however near, as Cycles' rays meet a face at
+    /// any point within it (a sliver's corner baked 2e-6 m inside the face under it bakes black).
     bool covered(const Vec3& x, std::size_t e) const;
 
     /// Elements with at least one such partner.
@@ -31,7 +32,6 @@ private:
     bool inside(const Vec3& x, std::size_t h) const;
 
     const Elements& elements_;
-    float tolerance_;
     std::vector<std::vector<int32_t>> partners_;  ///< per element, sorted; empty for most
 };
 

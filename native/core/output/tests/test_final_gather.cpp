@@ -7,6 +7,7 @@
 /// how far an element's corners beside a lamp were from its exact light (what the estimate reads),
 /// the furnace at every corner (seams of a closed box), determinism, and cancelling.
 #include "bake/bake.h"
+#include "output/coincident_faces.h"
 
 #include "testing/test_util.h"
 
@@ -500,6 +501,41 @@ TEST(FinalGather, CornersLyingOnAnotherFaceAreBlackAsInCycles) {
     const Rgb outer = rho * I * (h / std::sqrt(d2) / d2 / M_PI);
     EXPECT_LT(worst_relative_error(r, corners_at(s, Vec3(5.0f, 5.0f, 0.0f)), outer), 1e-3);
     EXPECT_EQ(r.buried_points, 0u);
+}
+
+TEST(FinalGather, ASliversCornersBakedInsideTheFaceUnderItAreBlackAsInCycles) {
+    // Floor faces of a game level (OpenArena's kaos, moved to the origin): a strip 2.5 cm wide and 8 m
+    // long (a sliver of two triangles) and a triangle of its width, 3.25 m long, lying on it, beside
+    // two floor triangles that lie on nothing. Cycles bakes a corner a hair from its vertex towards
+    // its triangle's centroid: the triangle's corners lie on the strip, one of them 2e-6 m inside its
+    // edge, and the strip's corner at the triangle's end lies on the triangle. Their rays meet the
+    // other face's back at distance 0 there, and Cycles bakes them black (as kaos' own corners are).
+    const Rgb rho(0.5);
+    auto at = [](double x, double y) { return Vec3(float(x - 8.0), float(y + 15.0), 0.0f); };
+    const Vec3 a = at(4.877, -15.062), b = at(4.877, -15.037), c = at(13.005, -15.037), d = at(13.005, -15.062),
+               e = at(8.128, -15.037), f = at(13.005, -9.754), g = at(4.877, -9.754);
+    test::SceneArrays s;
+    s.add_polygon({b, a, e}, rho, Rgb(0.0));  // the triangle lying on the strip
+    s.add_polygon({b, a, c}, rho, Rgb(0.0));  // the strip
+    s.add_polygon({a, d, c}, rho, Rgb(0.0));
+    s.add_polygon({b, c, f}, rho, Rgb(0.0));  // the floor beside it
+    s.add_polygon({b, f, g}, rho, Rgb(0.0));
+    BakeSettings settings = gather_settings(3.9f, true);
+    settings.final_gather.field_rays = 64;
+    PointLight lamp;
+    lamp.position = at(8.94, -15.44) + Vec3(0.0f, 0.0f, 3.86f);
+    lamp.intensity = Rgb(100.0);
+    settings.lights.points.push_back(lamp);
+    const BakeResult r = bake(s.input(), settings);
+    // The triangle's three corners, and the strip's at the end the triangle covers.
+    for (const std::size_t corner : {0, 1, 2, 3}) EXPECT_EQ(max_channel(r.colors.input_corner[corner]), 0.0) << corner;
+    for (std::size_t corner = 4; corner < 15; ++corner) {  // nothing lies under them: the lamp's exact light
+        const float* p = &s.positions[3 * s.corner_vertices[corner]];
+        const Vec3 x(p[0], p[1], p[2]);
+        const glm::dvec3 to_lamp = glm::dvec3(lamp.position - x);
+        const double direct = 100.0 * to_lamp.z / std::pow(glm::length(to_lamp), 3.0);
+        EXPECT_NEAR(r.colors.input_corner[corner].g / (0.5 * direct / M_PI), 1.0, 2e-3) << corner;
+    }
 }
 
 TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
