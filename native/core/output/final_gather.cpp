@@ -10,11 +10,11 @@
 #include "output/corner_blend.h"
 #include "output/corner_wedges.h"
 #include "output/emitter_groups.h"
-#include "output/field_bubbles.h"
 #include "output/flat_places.h"
 #include "output/gather_hits.h"
 #include "output/irradiance_cache.h"
 #include "output/kept_direct_light.h"
+#include "output/lamp_bubbles.h"
 #include "output/point_reads.h"
 #include "transport/lamp_points.h"
 #include "transport/near_field.h"
@@ -1154,9 +1154,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     // light is linear in the field at the seam vertices, which are such points too (solve_seams). Passes alone converge
     // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
     // of its hemisphere.
-    std::vector<Rgb> solution = colors.element_corner;  // with the bubbles that keep each element's solved mean
-    append_bubbles(elements, solution_bubbles(elements, colors.element_corner, radiance), solution);
-    std::vector<Rgb> field = solution;
+    std::vector<Rgb> field = colors.element_corner;
     const std::vector<std::size_t> near_lit = near_lit_elements(elements, emitted, runs, lights);
     CornerWedges wedges;
     std::vector<PointStatistics> field_statistics(settings.field_rays > 0 ? elements.vertices.size() : 0);
@@ -1165,7 +1163,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     if (settings.field_rays > 0) {
         FinalGatherSettings field_settings = settings;
         field_settings.rays = settings.field_rays;
-        const Gatherer field_gatherer(scene, solution, field_settings);
+        const Gatherer field_gatherer(scene, colors.element_corner, field_settings);
         gather_field(field_gatherer, elements, emitted, element_at, same_place, approach, place, polygon_centre,
                      progress, field, field_statistics, field_direct);
         // The lamps' light the corners' blend misses; then, before the near lit elements' corners are
@@ -1185,9 +1183,9 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     } else {
-        // The interpolated solution's corners alone: how far their blend was from the solved light
-        // tells how little of its shape within the elements they hold.
-        field_error = field_power_error(elements, colors.element_corner, radiance);
+        // The interpolated solution: how far its corners' blend is from the solved light tells how
+        // little of its shape within the elements they hold.
+        field_error = field_power_error(elements, field, radiance);
     }
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
     // Each point's direct light comes from the first pass.

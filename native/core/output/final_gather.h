@@ -43,10 +43,9 @@
 /// which their corners do not resolve. So does every later writing of gathered light into the field
 /// (the output points after the first pass, the seams' solve).
 ///
-/// Bubbles (field_bubbles.h): a blend of corners holds only light that is linear over an element.
-/// Each element of the solution the field's vertices read carries a bubble (zero on its edges) that
-/// makes its mean its solved radiance, and each element of the gathered field one that makes its
-/// mean of the point lamps' light exact, so that what a surface reflects into the rays is its whole
+/// Bubbles (lamp_bubbles.h): a blend of corners holds only light that is linear over an element.
+/// Each element of the gathered field carries a bubble (zero on its edges) that makes its mean of
+/// the point lamps' light exact, so that what a surface reflects of a lamp into the rays is its whole
 /// light, not its corners' blend (a floor face 90 cm under a lamp over its middle: 0.69 of it).
 ///
 /// Wedges: where an occluder stands on a surface, the light next to the vertex turns with the

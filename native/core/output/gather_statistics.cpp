@@ -4,8 +4,8 @@
 
 #include "common/stratified.h"
 #include "output/corner_blend.h"
-#include "output/field_bubbles.h"
 #include "output/interpolation.h"
+#include "output/lamp_bubbles.h"
 
 #include <algorithm>
 

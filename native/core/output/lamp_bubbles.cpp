@@ -1,6 +1,6 @@
-/// @file field_bubbles.cpp
-/// @brief The light an element's corner blend misses, as a bubble (field_bubbles.h).
-#include "output/field_bubbles.h"
+/// @file lamp_bubbles.cpp
+/// @brief The lamps' light an element's corner blend misses, as a bubble (lamp_bubbles.h).
+#include "output/lamp_bubbles.h"
 
 #include "common/parallel_rows.h"
 #include "output/corner_blend.h"
@@ -144,22 +144,6 @@ ElementMeans element_means(const Elements& elements, std::size_t e) {
     for (double& weight : means.corner) weight /= area;
     means.bubble /= area;
     return means;
-}
-
-std::vector<Rgb> solution_bubbles(const Elements& elements, const std::vector<Rgb>& corners,
-                                  const std::vector<Rgb>& radiance) {
-    std::vector<Rgb> bubbles(elements.size(), Rgb(0.0));
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-        if (elements.is_back(e)) continue;
-        const ElementMeans means = element_means(elements, e);
-        Rgb blended(0.0), centre(0.0);
-        for (int k = 0; k < elements.corner_count(e); ++k) {
-            blended += means.corner[k] * corners[4 * e + std::size_t(k)];
-            centre += corners[4 * e + std::size_t(k)] / double(elements.corner_count(e));
-        }
-        bubbles[e] = glm::max((radiance[e] - blended) / means.bubble, -centre);
-    }
-    return bubbles;
 }
 
 std::vector<Rgb> lamp_bubbles(const Elements& elements, const Lights& lights, const hr::Visibility& visibility,
