@@ -1183,9 +1183,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         wedges = wedge_tables(wedge_gatherer, elements, turning, place, element_at, approach, scene_size, progress);
         meter.add_to(cost.wedges);
     } else {
-        // The interpolated solution: how far its corners' blend is from the solved light tells how
-        // little of its shape within the elements they hold.
-        field_error = field_power_error(elements, field, radiance);
+        field_error = field_power_error(elements, field, radiance);  // the interpolated solution, unscaled
     }
     std::vector<Rgb> probe = noise_probe(elements, field_statistics, place);
     // Each point's direct light comes from the first pass.
