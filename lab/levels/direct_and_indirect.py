@@ -12,7 +12,6 @@ Run inside Blender:
         --cache /var/cache/bake-radiosity/levels/kaos_corners.npz [--seeds 4] [--albedo-scale 0.02]
 """
 
-import argparse
 import os
 import sys
 
@@ -53,19 +52,8 @@ def corners(args, scale, cached):
     return cached[name].mean(axis=0), harness.corner_colors(obj.data, "Radiosity") @ LUMINANCE
 
 
-def corner_positions(obj):
-    vertex = np.empty(len(obj.data.loops), dtype=np.int64)
-    obj.data.loops.foreach_get("vertex_index", vertex)
-    positions = np.empty(3 * len(obj.data.vertices))
-    obj.data.vertices.foreach_get("co", positions)
-    return positions.reshape(-1, 3)[vertex]
-
-
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--addon-zip", required=True)
-    parser.add_argument("--blend", required=True)
-    parser.add_argument("--object", default="BakeMesh")
+    parser = variants.level_arguments(truth=False)
     parser.add_argument("--cache", required=True, help="a .npz for Cycles' corners at both albedos")
     parser.add_argument("--seeds", type=int, default=4)
     parser.add_argument("--albedo-scale", type=float, default=0.02)
@@ -79,7 +67,7 @@ def main():
     direct, baked_direct = cycles_low / args.albedo_scale, baked_low / args.albedo_scale
     indirect, baked_indirect = cycles - direct, baked - baked_direct
     lit = cycles > 0.01 * cycles.mean()
-    distance = np.min(np.linalg.norm(corner_positions(bpy.data.objects[args.object])[:, None, :] -
+    distance = np.min(np.linalg.norm(harness.corner_positions(bpy.data.objects[args.object].data)[:, None, :] -
                                      variants.lamp_positions()[None, :, :], axis=2), axis=1)
     print("%s, %d lit corners, Cycles %d seeds: all light %.4f of Cycles'; direct (%.1f%% of it) %.4f, indirect %.4f"
           % (os.path.basename(args.blend), lit.sum(), args.seeds, baked[lit].sum() / cycles[lit].sum(),

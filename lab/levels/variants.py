@@ -56,13 +56,15 @@ def report(name, baked, truth_runs, positions, lamps, cpu):
               % (low, high, band.sum(), baked[band].sum() / truth[band].sum(), error), flush=True)
 
 
-def level_arguments():
-    """The arguments every level script takes: the add-on, the level, its mesh and its truth."""
+def level_arguments(truth=True):
+    """The arguments every level script takes: the add-on, the level, its mesh and, with `truth`,
+    its truth."""
     parser = argparse.ArgumentParser()
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--blend", required=True)
     parser.add_argument("--object", default="BakeMesh")
-    parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
+    if truth:
+        parser.add_argument("--truth", required=True, help="a truth cached by lab/interior/measure.py")
     return parser
 
 

@@ -59,14 +59,29 @@ void add_emitter(test::SceneArrays& s, double h, const Rgb& Le) {
     s.add_quad({-0.5f, -0.5f, z}, {-0.5f, 0.5f, z}, {0.5f, 0.5f, z}, {0.5f, -0.5f, z}, Rgb(0.0), Le, 1);
 }
 
-/// Bakes `s` at 0.5 m elements under a point lamp of intensity I at height h over the origin.
-BakeResult bake_under_lamp(const test::SceneArrays& s, const Rgb& I, double h, bool gather) {
-    BakeSettings settings = gather_settings(0.5f, gather);
+/// `settings` with a point lamp of intensity I at `position` added.
+BakeSettings with_lamp(BakeSettings settings, const Vec3& position, const Rgb& I) {
     PointLight lamp;
-    lamp.position = Vec3(0.0f, 0.0f, float(h));
+    lamp.position = position;
     lamp.intensity = I;
     settings.lights.points.push_back(lamp);
-    return bake(s.input(), settings);
+    return settings;
+}
+
+/// The Medium preset's gather at `element_size`: 3,136 rays a corner, the field gathered at the
+/// vertices with 64, 256 shadow rays, the indirect light shared at accuracy 0.15.
+BakeSettings medium_gather_settings(float element_size) {
+    BakeSettings settings = gather_settings(element_size, true);
+    settings.final_gather.rays = 3136;
+    settings.final_gather.field_rays = 64;
+    settings.final_gather.shadow_rays = 256;
+    settings.final_gather.cache_accuracy = 0.15;
+    return settings;
+}
+
+/// Bakes `s` at 0.5 m elements under a point lamp of intensity I at height h over the origin.
+BakeResult bake_under_lamp(const test::SceneArrays& s, const Rgb& I, double h, bool gather) {
+    return bake(s.input(), with_lamp(gather_settings(0.5f, gather), Vec3(0.0f, 0.0f, float(h)), I));
 }
 
 /// Largest |L / expected - 1| over the channels of the input corners `corners`.
@@ -326,6 +341,18 @@ double floor_light_at(const glm::dvec3& X, const glm::dvec3& P, double rho, doub
     return sum * dx * dy;
 }
 
+/// The light arriving at the wall's input corners `corners` at X (green channel), each within
+/// `tolerance` of `expected` (`direct` the lamp's part of it, irradiance), printed.
+void expect_wall_light(const BakeResult& r, const std::vector<std::size_t>& corners, const glm::dvec3& X, double direct,
+                       double expected, double tolerance) {
+    for (const std::size_t c : corners) {
+        const double light = r.light_colors.input_corner[c].g;
+        std::printf("wall at (%.2f, %.2f): light %.5f, exact %.5f (direct %.5f), %+.2f%%\n", X.y, X.z, light, expected,
+                    direct / M_PI, 100.0 * (light / expected - 1.0));
+        EXPECT_NEAR(light / expected, 1.0, tolerance);
+    }
+}
+
 TEST(FinalGather, AWallBesideALampHungOverAFloorVertexTakesItsExactReflection) {
     // A floor of 8 x 8 faces (reflectance 0.5) with a point lamp 5 cm over one of its vertices, and a
     // wall of 8 x 8 faces standing on the floor's edge that reflects nothing: the light arriving at
@@ -339,16 +366,7 @@ TEST(FinalGather, AWallBesideALampHungOverAFloorVertexTakesItsExactReflection) {
     test::SceneArrays s;
     s.add_grid(Vec3(0, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 8, Rgb(rho));  // the floor, normal +z
     s.add_grid(Vec3(0, -1, 0), Vec3(0, 2, 0), Vec3(0, 0, 2), 8, Rgb(0.0));  // the wall, normal +x
-    BakeSettings settings = gather_settings(0.5f, true);
-    settings.final_gather.rays = 3136;
-    settings.final_gather.field_rays = 64;
-    settings.final_gather.shadow_rays = 256;
-    settings.final_gather.cache_accuracy = 0.15;
-    PointLight lamp;
-    lamp.position = Vec3(P);
-    lamp.intensity = Rgb(I);
-    settings.lights.points.push_back(lamp);
-    const BakeResult r = bake(s.input(), settings);
+    const BakeResult r = bake(s.input(), with_lamp(medium_gather_settings(0.5f), Vec3(P), Rgb(I)));
     for (const glm::dvec3 X :
          {glm::dvec3(0, 0, 0.25), glm::dvec3(0, 0, 0.5), glm::dvec3(0, 0.5, 0.25), glm::dvec3(0, 0, 1.0)}) {
         const glm::dvec3 toLamp = P - X;
@@ -359,12 +377,7 @@ TEST(FinalGather, AWallBesideALampHungOverAFloorVertexTakesItsExactReflection) {
         const double expected = (direct + reflected) / M_PI;
         const std::vector<std::size_t> corners = corners_at(s, Vec3(X));
         ASSERT_EQ(corners.size(), 4u);
-        for (const std::size_t c : corners) {
-            const double light = r.light_colors.input_corner[c].g;
-            std::printf("wall at (%.2f, %.2f): light %.5f, exact %.5f (direct %.5f), %+.2f%%\n", X.y, X.z, light,
-                        expected, direct / M_PI, 100.0 * (light / expected - 1.0));
-            EXPECT_NEAR(light / expected, 1.0, 0.03);
-        }
+        expect_wall_light(r, corners, X, direct, expected, 0.03);
     }
 }
 
@@ -386,11 +399,7 @@ TEST(FinalGather, AnElementBesideALampReportsHowFarItsCornersWereFromItsLight) {
     s.add_grid(Vec3(0, -2, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), 4, Rgb(rho));
     BakeSettings settings = gather_settings(1.0f, true);
     settings.final_gather.field_rays = 64;  // the field gathered at the vertices: each its exact direct light
-    PointLight lamp;
-    lamp.position = Vec3(P);
-    lamp.intensity = Rgb(I);
-    settings.lights.points.push_back(lamp);
-    const BakeResult r = bake(s.input(), settings);
+    const BakeResult r = bake(s.input(), with_lamp(settings, Vec3(P), Rgb(I)));
     ASSERT_TRUE(r.gather_statistics.has_value());
     const Elements& elements = r.build.elements;
     std::size_t under = elements.size();
@@ -421,11 +430,7 @@ TEST(FinalGather, TheFieldCarriesALampsExactLightOverEveryElement) {
     s.add_grid(Vec3(-2, -2, 0), Vec3(4, 0, 0), Vec3(0, 4, 0), 4, Rgb(rho));
     BakeSettings settings = gather_settings(1.0f, true);
     settings.final_gather.field_rays = 64;
-    PointLight lamp;
-    lamp.position = Vec3(P);
-    lamp.intensity = Rgb(I);
-    settings.lights.points.push_back(lamp);
-    const BakeResult r = bake(s.input(), settings);
+    const BakeResult r = bake(s.input(), with_lamp(settings, Vec3(P), Rgb(I)));
     ASSERT_TRUE(r.gather_statistics.has_value());
     const Elements& elements = r.build.elements;
     ASSERT_EQ(elements.size(), 16u);
@@ -452,16 +457,7 @@ TEST(FinalGather, AWallBesideALampOverTheMiddleOfAFloorFaceTakesItsExactReflecti
     test::SceneArrays s;
     s.add_grid(Vec3(0, -2, 0), Vec3(3, 0, 0), Vec3(0, 4, 0), 3, Rgb(rho));  // the floor: 3 x 3 faces of 1 x 1.33 m
     s.add_grid(Vec3(0, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 2), 8, Rgb(0.0));  // the wall, normal +x
-    BakeSettings settings = gather_settings(2.0f, true);
-    settings.final_gather.rays = 3136;
-    settings.final_gather.field_rays = 64;
-    settings.final_gather.shadow_rays = 256;
-    settings.final_gather.cache_accuracy = 0.15;
-    PointLight lamp;
-    lamp.position = Vec3(P);
-    lamp.intensity = Rgb(I);
-    settings.lights.points.push_back(lamp);
-    const BakeResult r = bake(s.input(), settings);
+    const BakeResult r = bake(s.input(), with_lamp(medium_gather_settings(2.0f), Vec3(P), Rgb(I)));
     for (const glm::dvec3 X :
          {glm::dvec3(0, 0, 0.5), glm::dvec3(0, 0, 1.0), glm::dvec3(0, -1.0, 0.5), glm::dvec3(0, 1.5, 0.25)}) {
         const glm::dvec3 toLamp = P - X;
@@ -470,12 +466,7 @@ TEST(FinalGather, AWallBesideALampOverTheMiddleOfAFloorFaceTakesItsExactReflecti
         const double expected = (direct + reflected) / M_PI;
         const std::vector<std::size_t> corners = corners_at(s, Vec3(X));
         ASSERT_FALSE(corners.empty());
-        for (const std::size_t c : corners) {
-            const double light = r.light_colors.input_corner[c].g;
-            std::printf("wall at (%.2f, %.2f): light %.5f, exact %.5f (direct %.5f), %+.2f%%\n", X.y, X.z, light,
-                        expected, direct / M_PI, 100.0 * (light / expected - 1.0));
-            EXPECT_NEAR(light / expected, 1.0, 0.02);
-        }
+        expect_wall_light(r, corners, X, direct, expected, 0.02);
     }
 }
 
@@ -522,17 +513,14 @@ TEST(FinalGather, ASliversCornersBakedInsideTheFaceUnderItAreBlackAsInCycles) {
     s.add_polygon({b, f, g}, rho, Rgb(0.0));
     BakeSettings settings = gather_settings(3.9f, true);
     settings.final_gather.field_rays = 64;
-    PointLight lamp;
-    lamp.position = at(8.94, -15.44) + Vec3(0.0f, 0.0f, 3.86f);
-    lamp.intensity = Rgb(100.0);
-    settings.lights.points.push_back(lamp);
-    const BakeResult r = bake(s.input(), settings);
+    const Vec3 lamp = at(8.94, -15.44) + Vec3(0.0f, 0.0f, 3.86f);
+    const BakeResult r = bake(s.input(), with_lamp(settings, lamp, Rgb(100.0)));
     // The triangle's three corners, and the strip's at the end the triangle covers.
     for (const std::size_t corner : {0, 1, 2, 3}) EXPECT_EQ(max_channel(r.colors.input_corner[corner]), 0.0) << corner;
     for (std::size_t corner = 4; corner < 15; ++corner) {  // nothing lies under them: the lamp's exact light
         const float* p = &s.positions[3 * s.corner_vertices[corner]];
         const Vec3 x(p[0], p[1], p[2]);
-        const glm::dvec3 to_lamp = glm::dvec3(lamp.position - x);
+        const glm::dvec3 to_lamp = glm::dvec3(lamp - x);
         const double direct = 100.0 * to_lamp.z / std::pow(glm::length(to_lamp), 3.0);
         EXPECT_NEAR(r.colors.input_corner[corner].g / (0.5 * direct / M_PI), 1.0, 2e-3) << corner;
     }
