@@ -5,6 +5,7 @@
 #include "bake/media_bake.h"
 #include "bake/output_pass.h"
 #include "bake/pipelines.h"
+#include "visibility/open_backs.h"
 #include "visibility/resolution.h"
 #include "visibility/sight_distance.h"
 #include "visibility/sizes_by_sight.h"
@@ -55,11 +56,14 @@ BakeResult as_bake_result(HierarchyResult&& hierarchy) {
 
 BuildResult uniform_elements(const SceneInput& input, const BakeSettings& settings, const ProgressFn& progress) {
     BuildResult build = build_elements(input, settings.element_size, settings.limits, progress);
-    if (!(settings.element_size > 0.0f)) return build;
     ElementLimits limits = settings.limits;
-    limits.polygon_edge = sizes_by_sight(build.elements, input.face_count, settings.element_size);
-    if (!any_size(limits.polygon_edge)) return build;
-    return build_elements(input, settings.element_size, limits);  // the first build, as long, told the progress
+    if (settings.element_size > 0.0f)
+        limits.polygon_edge = sizes_by_sight(build.elements, input.face_count, settings.element_size);
+    const std::vector<uint8_t> open = open_backs(build.elements, input.face_count);
+    if (!any_size(limits.polygon_edge) && !any_open(open)) return build;
+    SceneInput two_sided = input;
+    two_sided.open_back = open.data();
+    return build_elements(two_sided, settings.element_size, limits);  // the first build, as long, told the progress
 }
 
 Clusters uniform_clusters(const BuildResult& build, const SceneInput& input, const BakeSettings& settings) {

@@ -32,6 +32,7 @@ namespace {
 using detail::DVec3;
 
 bool emits_front_only(const SceneInput& in, std::size_t f) { return in.front_only != nullptr && in.front_only[f] != 0; }
+bool has_open_back(const SceneInput& in, std::size_t f) { return in.open_back != nullptr && in.open_back[f] != 0; }
 
 [[noreturn]] void fail(std::size_t polygon, const std::string& what) {
     throw InputError("polygon " + std::to_string(polygon) + ": " + what);
@@ -305,7 +306,7 @@ struct Piece {
 /// Subdivides one convex or concave polygon (or cut piece) of input polygon f into elements;
 /// returns the element vertices of its corners.
 std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const DVec3& normal, std::size_t f,
-                               const Rgb& rho, const Rgb& emitted, bool emits_behind, float max_edge,
+                               const Rgb& rho, const Rgb& emitted, bool two_sided, float max_edge,
                                const ElementLimits& limits, std::size_t& back_sides) {
     const int count = static_cast<int>(p.size());
     const detail::SliverSplit sliver =
@@ -313,16 +314,19 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
     std::vector<DVec3> points = p;  // a cap sliver's altitude foot joins as point 3
     if (sliver.at_foot) points.push_back(sliver.foot);
     auto length = [&](int i, int j) { return glm::length(points[j] - points[i]); };
-    // Counts first, checked against the cap in double, before any element is made. A polygon that
-    // emits from both sides has its elements each get a back side (add_back_sides): they count twice.
+    // Counts first, checked against the cap in double, before any element is made. A two-sided
+    // polygon has its elements each get a back side (add_back_sides): they count twice.
     auto check_cap = [&](double elements) {
-        if (emits_behind) elements *= 2.0;
+        if (two_sided) elements *= 2.0;
         if (double(out.size() + back_sides) + elements > double(limits.max_elements)) {
             char what[200];
             std::snprintf(what, sizeof what,
                           "element_size %g m would make %.3g elements from this polygon%s, beyond the cap of %zu "
                           "for the scene; raise element_size",
-                          double(max_edge), elements, emits_behind ? " (both sides: it emits)" : "",
+                          double(max_edge), elements,
+                          !two_sided                   ? ""
+                          : max_channel(emitted) > 0.0 ? " (both sides: it emits)"
+                                                       : " (both sides: its back looks into the scene)",
                           limits.max_elements);
             throw BudgetError("polygon " + std::to_string(f) + ": " + what);
         }
@@ -407,14 +411,15 @@ std::vector<int32_t> subdivide(Elements& out, const std::vector<DVec3>& p, const
             }
         }
     }
-    if (emits_behind) back_sides += out.size() - first_element;
+    if (two_sided) back_sides += out.size() - first_element;
     std::vector<int32_t> corners(p.size());
     for (int k = 0; k < count; ++k) corners[k] = build.corner(k);
     return corners;
 }
 
 /// Emitting polygons emit from both sides, as in Cycles (except those marked front only, Cycles'
-/// area lamps: SceneInput::front_only): each of their elements gets a twin on
+/// area lamps: SceneInput::front_only), and polygons with an open back (SceneInput::open_back)
+/// reflect from both sides: each of their elements gets a twin on
 /// the same vertices, corners reversed, facing the other way (Elements::side). The twin shares the
 /// front's vertices, so that everything that renders or traces the elements sees the two sides
 /// at exactly one place; its cut-edge bits follow its reversed corners. `back_sides` is their
@@ -424,7 +429,8 @@ void add_back_sides(Elements& out, const SceneInput& in, std::size_t back_sides)
     const std::size_t fronts = out.size();
     out.side.assign(fronts, Elements::kOneSided);
     for (std::size_t e = 0; e < fronts; ++e) {
-        if (!(max_channel(out.emission[e]) > 0.0) || emits_front_only(in, std::size_t(out.polygon[e]))) continue;
+        const std::size_t f = std::size_t(out.polygon[e]);
+        if (emits_front_only(in, f) || !(max_channel(out.emission[e]) > 0.0 || has_open_back(in, f))) continue;
         out.side[e] = Elements::kFront;
         const std::array<int32_t, 4> c = out.corners[e];
         const bool triangle = c[3] < 0;
@@ -486,7 +492,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
                                                      : std::vector<detail::CutSegment>{};
 
     auto cut = cuts.begin();
-    std::size_t back_sides = 0;  // elements of emitting polygons, each to get a back side
+    std::size_t back_sides = 0;  // elements of two-sided polygons, each to get a back side
     const std::size_t report_every = std::max<std::size_t>(1, in.face_count / 100);
     for (std::size_t f = 0; f < in.face_count; ++f) {
         if (f > 0 && f % report_every == 0) detail::report_progress(progress, "elements", f, in.face_count);
@@ -495,13 +501,13 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const int32_t first = in.face_offsets[f];
         const Rgb rho(in.reflectance[3 * f], in.reflectance[3 * f + 1], in.reflectance[3 * f + 2]);
         const Rgb emitted(in.emission[3 * f], in.emission[3 * f + 1], in.emission[3 * f + 2]);
-        const bool emits_behind = max_channel(emitted) > 0.0 && !emits_front_only(in, f);
+        const bool two_sided = !emits_front_only(in, f) && (max_channel(emitted) > 0.0 || has_open_back(in, f));
         const float edge = polygon_max_edge(limits.polygon_edge, f, max_edge);
         const auto cut_end =
             std::find_if(cut, cuts.end(), [&](const detail::CutSegment& s) { return s.polygon != int32_t(f); });
         if (cut == cut_end) {
             const std::vector<int32_t> corners =
-                subdivide(out, p, normal, f, rho, emitted, emits_behind, edge, limits, back_sides);
+                subdivide(out, p, normal, f, rho, emitted, two_sided, edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k) out.corner_vertex[first + k] = corners[k];
             continue;
         }
@@ -510,7 +516,7 @@ BuildResult build_elements(const SceneInput& in, float max_edge, const ElementLi
         const std::size_t first_element = out.size();
         for (const detail::Piece& piece : detail::cut_polygon(p, normal, segments_begin, segments_end, tolerance)) {
             const std::vector<int32_t> corners =
-                subdivide(out, piece.points, normal, f, rho, emitted, emits_behind, edge, limits, back_sides);
+                subdivide(out, piece.points, normal, f, rho, emitted, two_sided, edge, limits, back_sides);
             for (std::size_t k = 0; k < corners.size(); ++k)
                 if (piece.corner[k] >= 0) out.corner_vertex[first + piece.corner[k]] = corners[k];
         }

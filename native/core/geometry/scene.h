@@ -26,6 +26,10 @@ struct SceneInput {
     /// face_count flags: an emitting face that emits from its front only, as Cycles' area lamps do
     /// (other emitting faces emit from both sides, Elements::side). May be null: none.
     const uint8_t* front_only = nullptr;
+    /// face_count flags: a face whose back side looks into the scene (visibility/open_backs.h). In
+    /// Cycles every face reflects from both sides; such a face does here too (Elements::side). May be
+    /// null: none.
+    const uint8_t* open_back = nullptr;
     /// Image textures that vary the faces' reflectance and emission about their mean (texture.h).
     /// May be null: every face is its flat colour.
     const SurfaceTextures* textures = nullptr;
@@ -46,9 +50,11 @@ struct Elements {
     /// element's polygon; corner colours do not blend across it. Empty = no such edges.
     std::vector<uint8_t> cut_edges;
     /// Emitting polygons are two-sided, as in Cycles, where a face with an emissive material emits
-    /// (and reflects) from both sides: build_elements gives each of their elements a back side, a
-    /// twin on the same vertices with its corners reversed (normal, centre, area, polygon,
-    /// reflectance and emission as the front's, normal negated), appended after all the fronts.
+    /// (and reflects) from both sides, and so are the faces whose back looks into the scene
+    /// (SceneInput::open_back), which reflect from both sides: build_elements gives each of their
+    /// elements a back side, a twin on the same vertices with its corners reversed (normal, centre,
+    /// area, polygon, reflectance and emission as the front's, normal negated), appended after all
+    /// the fronts.
     /// Per element: kOneSided, kFront (of such a pair) or kBack. The twins never hide each other:
     /// an element that has a twin, seen from behind, is left to its twin (hemi-cube, sun raster).
     /// A back side is solved like any element but its colours are not written (the mesh shows its
@@ -70,7 +76,7 @@ struct Elements {
     bool is_triangle(std::size_t e) const { return corners[e][3] < 0; }
     /// Whether element e is one of a front and back pair (see `side`).
     bool has_twin(std::size_t e) const { return !side.empty() && side[e] != kOneSided; }
-    /// Whether element e is the back side of an emitting polygon (see `side`).
+    /// Whether element e is the back side of a two-sided polygon (see `side`).
     bool is_back(std::size_t e) const { return !side.empty() && side[e] == kBack; }
 };
 
@@ -141,8 +147,8 @@ struct ElementLimits {
 /// Splits every polygon into elements whose edges are at most `max_edge` metres long
 /// (0 = one element per polygon; n-gons are always split into triangles and quads), after cutting
 /// it along the lines where other polygons pass through it (`limits.cut_intersections`). Every
-/// element of an emitting polygon (emission > 0 in any channel) gets a back side (Elements::side),
-/// after all the polygons' elements.
+/// element of an emitting polygon (emission > 0 in any channel) and of a polygon with an open back
+/// (SceneInput::open_back) gets a back side (Elements::side), after all the polygons' elements.
 /// Textured faces (SceneInput::textures) give their elements their mean colour over the element.
 /// Throws InputError for arrays that are inconsistent as a whole (offsets out of order,
 /// reflectance outside [0, 1), negative or non-finite emission) or beyond `limits`, naming the polygon.

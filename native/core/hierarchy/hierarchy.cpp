@@ -11,6 +11,7 @@
 #include "hierarchy/output.h"
 #include "hierarchy/solve.h"
 #include "transport/world_light.h"
+#include "visibility/open_backs.h"
 
 #include <tbb/parallel_for.h>
 
@@ -132,6 +133,12 @@ void check(const HierarchySettings& s) {
 BuildResult hierarchy_patches(const SceneInput& input, const HierarchySettings& settings) {
     check(settings);
     BuildResult patches = build_elements(input, 0.0f, settings.limits);
+    const std::vector<uint8_t> open = open_backs(patches.elements, input.face_count);
+    if (any_open(open)) {
+        SceneInput two_sided = input;
+        two_sided.open_back = open.data();
+        patches = build_elements(two_sided, 0.0f, settings.limits);
+    }
     // The hierarchy's visibility is its own (visibility/ray_tracer): lamps' quads block light there.
     patches.elements.lamp.clear();
     return patches;

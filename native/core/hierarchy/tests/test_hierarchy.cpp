@@ -39,10 +39,11 @@ HierarchySettings with_lamp(HierarchySettings s, const Vec3& position) {
     return s;
 }
 
-/// Area-weighted mean radiance (red) per input polygon.
+/// Area-weighted mean radiance (red) of each input polygon's fronts.
 std::map<int32_t, double> polygon_means(const Elements& e, const std::vector<Rgb>& radiance) {
     std::map<int32_t, double> power, area;
     for (std::size_t i = 0; i < e.size(); ++i) {
+        if (e.is_back(i)) continue;  // the fronts, whose colours are written
         power[e.polygon[i]] += radiance[i].r * e.area[i];
         area[e.polygon[i]] += e.area[i];
     }

@@ -1,6 +1,6 @@
 /// @file test_lamp_points.cpp
 /// @brief Hundreds of lamps at a point: the lamps that matter traced, the rest picked, against
-/// the sum over every lamp.
+/// the sum over every lamp; a few dozen all traced.
 #include "transport/lamp_points.h"
 
 #include <gtest/gtest.h>
@@ -55,6 +55,34 @@ TEST(LampPoints, AWallHidingHalfTheLampsIsMetOnAverage) {
             if ((lamp.position.x > 5) == (x.x > 5)) truth += point_unshadowed(lamp, x, Vec3(0, 0, 1)).r;
     }
     EXPECT_NEAR(sum, truth, 0.01 * truth);
+}
+
+TEST(LampPoints, APointInTheShadowOfItsBrightestLampsTakesTheDimOnesThatReachItExactly) {
+    // 8 bright lamps behind a wall at x = 5 give 98% of the unshadowed light on the floor before
+    // it; the 40 dim ones in front of it, each under kTracedShare of the total, are all that reach it.
+    Lights lights;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> front(0.2f, 4.8f), behind(5.2f, 9.8f), along(0.0f, 10.0f), up(0.3f, 2.9f);
+    for (int i = 0; i < 48; ++i) {
+        PointLight lamp;
+        const bool bright = i < 8;
+        lamp.position = Vec3(bright ? behind(random) : front(random), along(random), up(random));
+        lamp.intensity = Rgb(bright ? 50000.0 : 1.0);
+        lights.points.push_back(lamp);
+    }
+    const hr::Visibility wall({{5, -1, -1}, {5, 11, -1}, {5, 11, 4}, {5, -1, 4}}, {{0, 1, 2, 3}}, 20.0f);
+    for (const Vec3& x : floor_points()) {
+        if (x.x > 5) continue;
+        double truth = 0.0, all = 0.0;
+        for (const PointLight& lamp : lights.points) {
+            const double u = point_unshadowed(lamp, x, Vec3(0, 0, 1)).r;
+            all += u;
+            if (lamp.position.x < 5) truth += u;
+        }
+        ASSERT_LT(truth, 0.05 * all);
+        EXPECT_NEAR(detail::lamp_irradiance(lights, wall, x, Vec3(0, 0, 1)).r, truth, 1e-9 * truth)
+            << x.x << " " << x.y;
+    }
 }
 
 }  // namespace
