@@ -8,10 +8,9 @@
 /// gets no light there and needs no back side. One whose back looks at other surfaces' fronts does:
 /// a bridge or a table top modelled as one face, a level whose brushes' hidden faces were dropped,
 /// a wall of one plane. Such a face gets a back side (SceneInput::open_back, Elements::side) that
-/// is solved and lights what it faces. So do the faces of a box without a bottom standing on a
-/// floor, whose backs see the floor under it: their back sides stay dark, at the cost of their
-/// elements (in game levels, whose brushes' faces mostly see each other's backs, a rule that left
-/// out backs looking mostly at back faces also left out backs Cycles lights).
+/// is solved and lights what it faces. Fronts that are themselves enclosed (all their rays but one
+/// meet back faces: the floor under a box without a bottom standing on it) do not count, so the
+/// inside of such a box stays one-sided; a floor under a bridge sees out past it and counts.
 #pragma once
 
 #include "geometry/scene.h"
@@ -23,7 +22,8 @@ namespace radiosity {
 
 /// Per input polygon (`polygons` of them), 1 where its back looks into the scene: of 16 stratified
 /// cosine-weighted rays from the back of each of up to 8 of its elements (`elements`, one-sided,
-/// e.g. a first build), at least an eighth meet the front of another surface. Emitters' and lamps'
+/// e.g. a first build), at least an eighth meet the front of another surface that is not enclosed
+/// (15 of its own 16 rays meet back faces). Emitters' and lamps'
 /// polygons are 0 (emitters have their back sides already, lamps block nothing).
 std::vector<uint8_t> open_backs(const Elements& elements, std::size_t polygons);
 

@@ -1,6 +1,6 @@
 /// @file test_open_backs.cpp
 /// @brief Which faces' backs look into the scene: a bridge of one face over a floor does, a closed
-/// room's walls and a closed box's faces do not.
+/// room's walls, a closed box's faces and those of a box without a bottom on a floor do not.
 #include "geometry/scene.h"
 #include "testing/test_util.h"
 #include "visibility/open_backs.h"
@@ -33,6 +33,15 @@ TEST(OpenBacks, AClosedRoomsWallsAndAClosedBoxInItHaveNone) {
     s.add_quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z}, Rgb(0.5));  // +y
     const std::vector<uint8_t> open = open_backs(build_elements(s.input(), 0.25f).elements, s.input().face_count);
     EXPECT_FALSE(any_open(open));
+}
+
+TEST(OpenBacks, BlocksWithoutABottomStandingOnAFloorHaveNone) {
+    // From behind, the blocks' faces see the floor under them, which sees nothing but their backs.
+    const test::SceneArrays cornell = test::cornell_box();
+    for (const float size : {0.05f, 0.1f}) {
+        const Elements elements = build_elements(cornell.input(), size, ElementLimits().with_contacts()).elements;
+        EXPECT_FALSE(any_open(open_backs(elements, cornell.input().face_count))) << size;
+    }
 }
 
 }  // namespace
