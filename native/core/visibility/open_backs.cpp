@@ -35,6 +35,7 @@ void rays_from(const Elements& elements, std::size_t e, const Vec3& n, const hr:
     }
 }
 
+/// Whether element `hit` shows its front to a ray along `direction`.
 bool faces(const Elements& elements, const Vec3& direction, std::size_t hit) {
     return glm::dot(direction, elements.normal[hit]) < 0.0f;
 }
