@@ -3,8 +3,7 @@
 #include "visibility/sizes_by_sight.h"
 
 #include "common/parallel_rows.h"
-#include "common/stratified.h"
-#include "visibility/ray_tracer.h"
+#include "visibility/element_rays.h"
 #include "visibility/shadow_ray.h"
 
 #include <glm/geometric.hpp>
@@ -15,8 +14,7 @@
 namespace radiosity {
 namespace {
 
-constexpr int kElementsPerPolygon = 8;
-constexpr int kRaysAlong = 4;          ///< 4 x 4 stratified rays from each
+constexpr std::size_t kElementsPerPolygon = 8;
 constexpr double kLargest = 0.25;      ///< of the element size: distances beyond it keep the element size
 constexpr double kMoreElements = 0.5;  ///< of the elements' count: what the cuts may add,
 constexpr double kMoreAtLeast = 2048;  ///< or this many in a small scene
@@ -35,26 +33,19 @@ double longest_edge(const Elements& elements, std::size_t e) {
 /// or where most of them meet a back face nearer than the element's size (it lies under other
 /// geometry: a level's floor running on under a wall).
 double harmonic_distance(const Elements& elements, std::size_t e, const hr::Visibility& rays) {
-    const glm::dvec3 n(elements.normal[e]);
-    glm::dvec3 t, b;
-    detail::tangent_frame(n, t, b);
-    const Vec3 origin = elements.centre[e] + rays.gap() * elements.normal[e];
     const float near = std::sqrt(elements.area[e]);
     double inverse = 0.0;
     int fronts = 0, backs = 0;
-    for (int r = 0; r < kRaysAlong * kRaysAlong; ++r) {
-        const double u = (double(r % kRaysAlong) + 0.5) / kRaysAlong, v = (double(r / kRaysAlong) + 0.5) / kRaysAlong;
-        const Vec3 direction(detail::cosine_direction(n, t, b, u, v));
-        const hr::Visibility::Hit hit = rays.first_hit(origin, direction, 0.0f);
-        if (hit.patch < 0 || !(hit.distance > 0.0f)) continue;
-        if (glm::dot(direction, elements.normal[std::size_t(hit.patch)]) >= 0.0f) {
-            backs += hit.distance < near;
-            continue;
-        }
-        inverse += 1.0 / double(hit.distance);
-        ++fronts;
-    }
-    if (2 * backs > kRaysAlong * kRaysAlong || fronts == 0) return 0.0;
+    detail::element_rays(elements, e, elements.normal[e], rays,
+                         [&](const Vec3& direction, const hr::Visibility::Hit& hit) {
+                             if (glm::dot(direction, elements.normal[std::size_t(hit.patch)]) >= 0.0f) {
+                                 backs += hit.distance < near;
+                                 return;
+                             }
+                             inverse += 1.0 / double(hit.distance);
+                             ++fronts;
+                         });
+    if (2 * backs > detail::kElementRays || fronts == 0) return 0.0;
     return double(fronts) / inverse;
 }
 
@@ -62,11 +53,10 @@ double harmonic_distance(const Elements& elements, std::size_t e, const hr::Visi
 /// none counts): a polygon narrow only beside a pillar is not narrow.
 double polygon_distance(const Elements& elements, const std::vector<int32_t>& polygon, const hr::Visibility& rays) {
     std::vector<double> distances;
-    const std::size_t step = std::max<std::size_t>(1, polygon.size() / kElementsPerPolygon);
-    for (std::size_t i = 0; i < polygon.size(); i += step) {
-        const double distance = harmonic_distance(elements, std::size_t(polygon[i]), rays);
+    detail::spread_elements(polygon, kElementsPerPolygon, [&](std::size_t e) {
+        const double distance = harmonic_distance(elements, e, rays);
         if (distance > 0.0) distances.push_back(distance);
-    }
+    });
     if (distances.empty()) return 0.0;
     std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
     return distances[distances.size() / 2];
