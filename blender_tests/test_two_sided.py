@@ -2,8 +2,9 @@
 sides, as in Cycles: a 2 m room (white walls, albedo 0.7) with a 50 cm emitting square hung 1 cm
 under the ceiling, facing down. Its back side lights the ceiling above it (in Cycles radiance 7.0
 at the ceiling vertex over its centre; a one-sided emitter would leave that ceiling black and the
-room 25% dark). Baked through the operator (the panel's settings) and through bake_radiosity.bake, against Cycles' Combined bake of the same room to colour attributes,
-Cycles unbiased and in two halves with different seeds (as test_cycles)."""
+room 25% dark). Baked through the operator (the panel's settings) and through bake_radiosity.bake,
+against Cycles' Combined bake of the same room to colour attributes, Cycles unbiased and in two
+halves with different seeds (as test_cycles)."""
 
 import math
 import os
