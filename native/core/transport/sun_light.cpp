@@ -37,7 +37,8 @@ Rgb sun_irradiance(const SunLight& sun, const hr::Visibility& visibility, const 
     const glm::dvec3 towards = -glm::dvec3(sun.direction), n(normal);
     if (!(sun.half_angle > 0.0f)) {
         const double cosine = glm::dot(n, towards);
-        return cosine > 0.0 && visibility.clear_towards(x, Vec3(towards)) ? sun.irradiance * cosine : Rgb(0.0);
+        return cosine > 0.0 && visibility.escapes_from_surface(x, normal, Vec3(towards)) ? sun.irradiance * cosine
+                                                                                         : Rgb(0.0);
     }
     const double cos_max = std::cos(double(sun.half_angle)), sin2 = 1.0 - cos_max * cos_max;
     // The mean over the uniform cone of the clipped cosine, exactly.
@@ -47,7 +48,7 @@ Rgb sun_irradiance(const SunLight& sun, const hr::Visibility& visibility, const 
     const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
     const double share = detail::lit_share(
         cone, n, grid, seed, [](const glm::dvec3&) { return 1.0; },
-        [&](const glm::dvec3& u) { return visibility.clear_towards(x, Vec3(u)); });
+        [&](const glm::dvec3& u) { return visibility.escapes_from_surface(x, normal, Vec3(u)); });
     return share > 0.0 ? sun.irradiance * (clipped * spread_factor(sun, cos_max) * share) : Rgb(0.0);
 }
 

@@ -162,7 +162,7 @@ void WorldSampler::add(const hr::Visibility& visibility, const Vec3& origin, con
                        double cos_density, int map_count, Rgb& sum) const {
     if (!(cosine > 0.0)) return;
     const double density = cos_density * cosine / M_PI + double(map_count) * map_pdf(w);
-    if (!(density > 0.0) || !visibility.clear_towards(origin, Vec3(w))) return;
+    if (!(density > 0.0) || !visibility.escapes(origin, Vec3(w))) return;
     sum += world_.radiance[pixel_of(world_, w)] * (cosine / density);
 }
 

@@ -88,7 +88,7 @@ Rgb WorldSampler::irradiance(const hr::Visibility& visibility, const Vec3& origi
     for (int cell = 0; cell < cells && piloted; ++cell) {
         const glm::dvec3 w = direction_in(cell, 1, 0);
         PilotRay& ray = pilot[std::size_t(cell)];
-        ray.escaped = glm::dot(n, w) > 0.0 && visibility.clear_towards(origin, Vec3(w));
+        ray.escaped = glm::dot(n, w) > 0.0 && visibility.escapes(origin, Vec3(w));
         if (ray.escaped) ray.radiance = world_.radiance_from(Vec3(w));
     }
     // Edge cells: a neighbour (diagonals too; the azimuth wraps around) disagrees.

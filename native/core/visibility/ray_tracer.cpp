@@ -171,6 +171,14 @@ bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
     return !occluded(from, direction, std::max(gap_, 1e-6f), 2.0f * scene_size_ + 1.0f);
 }
 
+bool Visibility::escapes(const Vec3& origin, const Vec3& direction) const {
+    return !occluded(origin, direction, 0.0f, 2.0f * scene_size_ + 1.0f);
+}
+
+bool Visibility::escapes_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
+    return escapes(from + std::max(gap_, 1e-6f) * normal, direction);
+}
+
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
     rays_.fetch_add(1, std::memory_order_relaxed);
     RTCRayHit query{};

@@ -39,6 +39,13 @@ public:
     bool clear_from_surface(const Vec3& from, const Vec3& normal, const Vec3& to) const;
     /// True when nothing lies along `direction` (unit) from `from` out of the scene.
     bool clear_towards(const Vec3& from, const Vec3& direction) const;
+    /// The same from `origin`, a point already lifted off its surface (as the World's and the
+    /// final gather's rays leave theirs): without clear_towards' gap at the start, so that a wall
+    /// beside the point, nearer than the gap, still hides the sky behind it.
+    bool escapes(const Vec3& origin, const Vec3& direction) const;
+    /// The same from `from`, a point on a surface facing unit `normal`: the ray leaves 1e-6 of the
+    /// scene size above it, as clear_from_surface's do.
+    bool escapes_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const;
 
     /// The first patch along `direction` (unit) from `from`, beyond `t_near`: its index (-1 for
     /// none), distance and Embree's (u, v) on it: the point is corner 0 + u (1 - 0) + v (3 - 0)
@@ -52,7 +59,8 @@ public:
     Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
     /// The gap left at a segment's ends (1e-6 of the scene size).
     float gap() const { return gap_; }
-    /// The rays traced so far (clear, clear_towards and first_hit: one each), from every thread.
+    /// The rays traced so far (clear, clear_towards, escapes and first_hit: one each), from every
+    /// thread.
     std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:

@@ -526,6 +526,34 @@ TEST(FinalGather, ASliversCornersBakedInsideTheFaceUnderItAreBlackAsInCycles) {
     }
 }
 
+TEST(FinalGather, ACornerOfTwoWallsUnderTheSkyHoldsTheInfiniteWedgesLight) {
+    // Two walls 20 m wide and 100 m long meeting at a right angle, open to a uniform sky. Seen from
+    // a point on their edge the other wall hides the directions behind its plane, whatever its size,
+    // and its light there is the point's own, so on the edge
+    //   L = rho F_open L_sky / (1 - rho F_other),  F_open = (1 - cos 90) / 2 = 1 - F_other,
+    // F_open the cosine-weighted share of the directions within 90 degrees of the wall's plane on the
+    // open side (Hottel's formula for a strip seen from a line). The sky's rays left a gap of a
+    // millionth of the scene at their start, passed the other wall beside the point and found up to
+    // 1.85 times this light.
+    const Rgb rho(0.5);
+    const float width = 20.0f, length = 100.0f;
+    test::SceneArrays s;
+    s.add_grid(Vec3(-width, 0.0f, -length / 2), Vec3(width, 0.0f, 0.0f), Vec3(0.0f, 0.0f, length), 4, rho);  // -y
+    s.add_grid(Vec3(0.0f, 0.0f, -length / 2), Vec3(0.0f, -width, 0.0f), Vec3(0.0f, 0.0f, length), 4, rho);   // -x
+    BakeSettings settings = medium_gather_settings(5.0f);
+    settings.world = WorldLight::uniform(Rgb(1.0));
+    const BakeResult r = bake(s.input(), settings);
+    const double open = 0.5, exact = 0.5 * open / (1.0 - 0.5 * (1.0 - open));
+    int checked = 0;
+    for (std::size_t c = 0; c < r.colors.input_corner.size(); ++c) {
+        const float* p = &s.positions[3 * s.corner_vertices[c]];
+        if (p[0] != 0.0f || p[1] != 0.0f || std::abs(p[2]) > 0.3f * length) continue;  // on the edge, off its ends
+        EXPECT_NEAR(r.colors.input_corner[c].g / exact, 1.0, 0.01) << c;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 12);  // three vertices along the edge, four corners each
+}
+
 TEST(FinalGather, LightOnlyUnderAPointLampIsExact) {
     // The light arriving under the lamp is I / (pi h^2), whatever the colour, and light x rho is the
     // radiance at every corner. A channel of reflectance 0: the gather still finds its light; the
