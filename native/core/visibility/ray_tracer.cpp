@@ -158,7 +158,7 @@ bool Visibility::clear(const Vec3& from, const Vec3& to, float begin, float end)
 }
 
 bool Visibility::clear_from_surface(const Vec3& from, const Vec3& normal, const Vec3& to) const {
-    const Vec3 origin = from + std::max(gap_, 1e-6f) * normal;
+    const Vec3 origin = from + lift() * normal;
     const Vec3 d = to - origin;
     const float length = glm::length(d);
     if (!(length > 0.0f)) return true;
@@ -168,21 +168,21 @@ bool Visibility::clear_from_surface(const Vec3& from, const Vec3& normal, const 
 }
 
 bool Visibility::clear_towards(const Vec3& from, const Vec3& direction) const {
-    return !occluded(from, direction, std::max(gap_, 1e-6f), 2.0f * scene_size_ + 1.0f);
+    return !occluded(from, direction, lift(), out_of_scene());
 }
 
 bool Visibility::escapes(const Vec3& origin, const Vec3& direction) const {
-    return !occluded(origin, direction, 0.0f, 2.0f * scene_size_ + 1.0f);
+    return !occluded(origin, direction, 0.0f, out_of_scene());
 }
 
 bool Visibility::escapes_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
-    return escapes(from + std::max(gap_, 1e-6f) * normal, direction);
+    return escapes(from + lift() * normal, direction);
 }
 
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
     rays_.fetch_add(1, std::memory_order_relaxed);
     RTCRayHit query{};
-    query.ray = make_ray(from, direction, t_near, 2.0f * scene_size_ + 1.0f);
+    query.ray = make_ray(from, direction, t_near, out_of_scene());
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
 #if RADIOSITY_EMBREE_MAJOR == 4

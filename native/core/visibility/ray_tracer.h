@@ -13,6 +13,7 @@
 #error "RADIOSITY_EMBREE_MAJOR must be 3 or 4 (set by native/core/CMakeLists.txt)"
 #endif
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -64,6 +65,11 @@ public:
     std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:
+    /// How far above a surface point its rays leave (clear_from_surface, escapes_from_surface), and
+    /// how far clear_towards' rays skip at their start: the gap, at least a micrometre.
+    float lift() const { return std::max(gap_, 1e-6f); }
+    /// A ray length that leaves the scene from any point in it.
+    float out_of_scene() const { return 2.0f * scene_size_ + 1.0f; }
     bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
 
     RTCDevice device_ = nullptr;
