@@ -114,7 +114,8 @@ class EngineTest(unittest.TestCase):
         self.assertEqual(
             line, "Cost: 5,556 elements; 1,204 output points gathered, 6,240 interpolated, 3 inside other geometry; "
                   "46.5 million rays; export 0.2 s, form factors 7.9 s, solve 0.5 s, final gather 12.1 s (field 2.0 "
-                  "s, light around corners 0.8 s, probes 0.3 s, output points 7.2 s, seams 1.7 s), writeback 0.3 s")
+                  "s, light around corners 0.8 s, probes 0.3 s, output points 7.2 s, near surfaces 1.7 s), "
+                  "writeback 0.3 s")
         self.assertEqual(summary.cost_line({"elements": 24, "seconds": {"solve": 1.0}}),
                          "Cost: 24 elements; solve 1.0 s")
         # Small coplanar faces merged: the unknowns solved follow the elements.

@@ -49,7 +49,7 @@ PHASE_NAMES = {"export": "export", "world_map": "World map", "elements": "elemen
                "solve": "solve", "zones": "zones", "interpolate": "interpolation", "gather": "final gather",
                "writeback": "writeback"}
 GATHER_PHASE_NAMES = {"field": "field", "wedges": "light around corners", "probes": "probes",
-                      "points": "output points", "seams": "seams", "other": "other"}
+                      "points": "output points", "seams": "near surfaces", "other": "other"}
 
 
 def gather_cost(final_gather):
@@ -150,7 +150,7 @@ def progress_text(info, tolerance):
              "gather field": "final gather at the elements' vertices", "gather": "final gather",
              "gather lamp bubbles": "lamps' light within the elements",
              "gather probes": "final gather's probe rays",
-             "gather seams": "final gather at seams",
+             "gather near surfaces": "final gather again beside near surfaces",
              "world": "world light", "textures": "texture means",
              "solve rows": "solving, rows of this sweep"}.get(info["phase"], info["phase"])
     return "Bake Radiosity: %s %d/%d" % (phase, info["done"], info["total"])

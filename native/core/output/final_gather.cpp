@@ -35,17 +35,17 @@
 namespace radiosity::detail {
 namespace {
 
-/// What a point's rays read of the corner field right at the seams next to it (closer than kSeam
-/// of the element hit): the light there is the seam vertices' own gathered light, so the point's
+/// What a point's rays read of the corner field near it (closer than kNear times the size of the
+/// element hit): the light there is the neighbouring points' own gathered light, so the point's
 /// light is linear in it, light = direct + max(indirect + sum of weight x field[slot], 0).
-struct SeamReads {
+struct NearReads {
     Rgb direct{0.0}, indirect{0.0};                 ///< direct light; the other rays' indirect light
     std::vector<std::pair<int32_t, double>> slots;  ///< (slot 4 e + k of the field, weight), each slot once
 };
 
 /// What a gathered point gives besides its light, each where its pointer is not null.
 struct PointOutputs {
-    SeamReads* reads = nullptr;             ///< what its rays read at the seams (the last pass)
+    NearReads* reads = nullptr;             ///< what its rays read near it (the last pass)
     PointStatistics* statistics = nullptr;  ///< its sampling statistics (gather_statistics.h)
     LightGradients* gradients = nullptr;    ///< its indirect light's gradients (irradiance_cache.h)
     uint8_t* moved = nullptr;               ///< whether its first point was buried and another taken
@@ -128,7 +128,7 @@ public:
     /// `direct`: the point's direct light, computed when `direct_known` is false or the first point
     /// is buried (given: the direct light at the first point, from the field or an earlier pass).
     bool radiance_at(int32_t vertex, std::size_t e, const Vec3& polygon_centre, const Vec3& approach, uint32_t place,
-                     Rgb& out, Rgb& light, float& seam_share, Rgb& direct_light, bool direct_known,
+                     Rgb& out, Rgb& light, float& near_share, Rgb& direct_light, bool direct_known,
                      const PointOutputs& outputs = {}) const {
         const Vec3 corner = elements_.vertices[vertex];
         const Vec3 towards = elements_.centre[e] - corner;
@@ -157,7 +157,7 @@ public:
             if (scene_.coincident.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
             const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
-            if (!gather_indirect(origin, n, seed, to_centre, indirect, seam_share, outputs)) continue;  // buried
+            if (!gather_indirect(x, n, seed, to_centre, indirect, near_share, outputs)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
             if (!direct_known || i > 0) direct_light = direct(x, origin, n, seed);
             if (outputs.reads != nullptr) outputs.reads->direct = direct_light;
@@ -186,8 +186,8 @@ public:
         const Vec3 origin = lifted(x, n);
         const uint32_t seed = mix_seed(place, 0x5EEDU);
         Rgb indirect(0.0);
-        float seam_share = 0.0f;
-        if (gather_indirect(origin, n, seed, glm::length(elements_.centre[e] - x), indirect, seam_share, {}, true))
+        float near_share = 0.0f;
+        if (gather_indirect(x, n, seed, glm::length(elements_.centre[e] - x), indirect, near_share, {}, true))
             return false;
         light = direct(x, origin, n, seed) + indirect;
         out = scene_.emitted[e] + elements_.reflectance[e] * light;
@@ -217,7 +217,7 @@ public:
         const glm::dvec3 n(elements_.normal[e]);
         glm::dvec3 t, b;
         tangent_frame(n, t, b);
-        const Vec3 origin = lifted(out.position, elements_.normal[e]);
+        const Vec3& origin = out.position;
         const int grid = std::max(1, int(std::lround(std::sqrt(double(rays)))));
         uint32_t seed = mix_seed(place, 0x960BEU);
         RecordedRays recorded(scene_.kept.hits, origin, elements_.normal[e], seed, grid, GatherHits::Kind::Probe);
@@ -231,7 +231,7 @@ public:
                 const double v = (double(i / grid) + next_jitter(seed)) / grid;
                 const Vec3 direction(cosine_direction(n, t, b, u, v));
                 // The fronts alone, whether or not they emit: which points gather may not depend on the light.
-                const hr::Visibility::Hit traced = scene_.visibility.first_hit(origin, direction, 0.0f);
+                const hr::Visibility::Hit traced = scene_.visibility.first_hit_from_surface(origin, Vec3(n), direction);
                 return std::make_pair(traced,
                                       traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) >= 0.0f);
             });
@@ -283,9 +283,9 @@ public:
     /// false where it is buried.
     bool indirect_near(const Vec3& x, std::size_t e, uint32_t place, Rgb& out) const {
         const Vec3 n = elements_.normal[e];
-        float seam_share = 0.0f;
-        return gather_indirect(lifted(x, n), n, mix_seed(place, 0x5EEDU), glm::length(elements_.centre[e] - x), out,
-                               seam_share, {});
+        float near_share = 0.0f;
+        return gather_indirect(x, n, mix_seed(place, 0x5EEDU), glm::length(elements_.centre[e] - x), out, near_share,
+                               {});
     }
 
     /// Where the gather at element vertex `vertex` of element `e` starts, unless that is buried.
@@ -307,21 +307,22 @@ private:
     /// more than half of them hit a back face nearer than `near` (buried: then `out` is left as it
     /// was unless `even_buried`). The radiance where a ray hit is radiance_near plus the light
     /// around its corners on seams (wedge_light); both are linear in the values they read.
-    /// `seam_share`: the share of rays that met another surface right at the point (closer than
-    /// kSeam of the element hit). With `outputs.reads` (the output's gatherers alone), what those
+    /// The rays leave `origin`, the point itself, skipping its own face (as Cycles' rays do).
+    /// `near_share`: the share of rays that met a surface near the point (closer than kNear times
+    /// the size of the element hit). With `outputs.reads` (the output's gatherers alone), what those
     /// rays read of the field goes there as weights, the rest as its indirect; with
     /// `outputs.statistics` and `outputs.gradients`, the rays' sampling statistics and the indirect
     /// light's gradients. The output's gatherers read their rays folded (point_reads.h), the others
     /// hit by hit.
-    bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
+    bool gather_indirect(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& near_share,
                          const PointOutputs& outputs, bool even_buried = false) const {
         if (keeping_ == RayKeeping::Folded)
-            return gather_folded(origin, normal, seed, near, out, seam_share, outputs, even_buried);
-        return gather_hit_by_hit(origin, normal, seed, near, out, seam_share, outputs, even_buried);
+            return gather_folded(origin, normal, seed, near, out, near_share, outputs, even_buried);
+        return gather_hit_by_hit(origin, normal, seed, near, out, near_share, outputs, even_buried);
     }
 
     /// gather_indirect from the rays' folded reads, kept by an earlier gather or traced and folded.
-    bool gather_folded(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& seam_share,
+    bool gather_folded(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out, float& near_share,
                        const PointOutputs& outputs, bool even_buried) const {
         PointReads own;
         const PointReads& reads = point_reads(origin, normal, seed, outputs.gradients != nullptr, own);
@@ -334,7 +335,7 @@ private:
         const ReadSums sums = evaluate(reads, {elements_, corner_field_, scene_.radiance, scene_.emitted, wedges_,
                                                statistics != nullptr ? statistics->probe : nullptr});
         out = glm::max(sums.sum / double(rays), Rgb(0.0));
-        seam_share = float(reads.at_seam) / float(rays);
+        near_share = float(reads.near_hits) / float(rays);
         if (statistics != nullptr) spread_statistics(out, sums.difference, sums.probe, rays, *statistics);
         if (outputs.gradients != nullptr) {
             glm::dvec3 t, b;
@@ -342,7 +343,7 @@ private:
             *outputs.gradients = sums.gradients.in_space(t, b);
         }
         if (outputs.reads != nullptr) {
-            outputs.reads->slots = reads.seam_slots;
+            outputs.reads->slots = reads.near_slots;
             outputs.reads->indirect = sums.rest / double(rays);
         }
         return !buried;
@@ -360,7 +361,7 @@ private:
         GatherHits* hits = scene_.kept.hits;
         if (hits != nullptr)
             if (const PointReads* kept = hits->find_reads(key)) return *kept;
-        own = fold_reads(elements_, scene_.emitted, with_wedges ? wedges_ : nullptr, {grid_, kSeam, gradients, bubbles},
+        own = fold_reads(elements_, scene_.emitted, with_wedges ? wedges_ : nullptr, {grid_, kNear, gradients, bubbles},
                          trace_rays(origin, normal, seed));
         if (hits != nullptr)
             if (const PointReads* kept = hits->record_reads(key, own)) return *kept;
@@ -385,19 +386,19 @@ private:
         const double v = (double(i / grid_) + next_jitter(seed)) / grid_;
         const Vec3 direction(cosine_direction(n, t, b, u, v));
         const hr::Visibility::Hit traced =
-            facing(scene_.visibility.first_hit(origin, direction, 0.0f), origin, direction);
+            facing(scene_.visibility.first_hit_from_surface(origin, Vec3(n), direction), origin, direction);
         return {traced, traced.patch >= 0 && glm::dot(direction, elements_.normal[traced.patch]) < 0.0f};
     }
 
     /// gather_indirect reading each ray's hit, recorded by an earlier gather or traced (without
     /// `outputs.reads` and `outputs.gradients`: only the output's gatherers ask for those).
     bool gather_hit_by_hit(const Vec3& origin, const Vec3& normal, uint32_t seed, float near, Rgb& out,
-                           float& seam_share, const PointOutputs& outputs, bool even_buried) const {
+                           float& near_share, const PointOutputs& outputs, bool even_buried) const {
         glm::dvec3 t, b;
         const glm::dvec3 n(normal);
         tangent_frame(n, t, b);
         Rgb sum(0.0);
-        int back_near = 0, at_seam = 0;
+        int back_near = 0, near_hits = 0;
         RaySpread spread(elements_, outputs.statistics, grid_);
         RecordedRays recorded(scene_.kept.hits, origin, normal, seed, grid_, GatherHits::Kind::Indirect);
         const int rays = grid_ * grid_;
@@ -412,7 +413,7 @@ private:
                 const Rgb seen = radiance_near(hit) + wedge_light(hit) - scene_.emitted[hit.patch];
                 sum += seen;
                 spread.add(i, seen, hit);
-                at_seam += hit.distance < kSeam * std::sqrt(elements_.area[hit.patch]);
+                near_hits += hit.distance < kNear * std::sqrt(elements_.area[hit.patch]);
             } else {
                 back_near += hit.distance < near;
             }
@@ -421,7 +422,7 @@ private:
         const bool buried = 2 * back_near > rays;
         if (buried && !even_buried) return false;
         out = glm::max(sum / double(rays), Rgb(0.0));
-        seam_share = float(at_seam) / float(rays);
+        near_share = float(near_hits) / float(rays);
         spread.finish(out, rays);
         return !buried;
     }
@@ -547,8 +548,8 @@ private:
                                                          std::max(0.0f, -glm::dot(Vec3(source.normal), d))) /
                                                       (r2 * r2)
                                                 : 0.0;
-                const bool seen_clear =
-                    unhidden(scene_.visibility, elements_, origin, points[k], Vec3(source.normal), scene_.scene_size);
+                const bool seen_clear = unhidden_from_surface(scene_.visibility, elements_, origin, normal, points[k],
+                                                              Vec3(source.normal), scene_.scene_size);
                 clear += seen_clear;
                 ++cast;
                 seen += sample_weight * kernel;
@@ -596,15 +597,16 @@ private:
         return wedges_->correction(elements_, std::size_t(hit.patch), hit.u, hit.v);
     }
 
-    /// Where the rays from a point x on a surface of normal n leave.
-    Vec3 lifted(const Vec3& x, const Vec3& n) const { return x + (kLift * scene_.scene_size) * n; }
+    /// Where the shadow and World rays from a point x on a surface of normal n leave
+    /// (hr::Visibility::lifted).
+    Vec3 lifted(const Vec3& x, const Vec3& n) const { return scene_.visibility.lifted(x, n); }
 
-    /// How far above their point rays leave, relative to the scene's size.
-    static constexpr float kLift = 1e-6f;
-
-    /// Hits this close to the point (relative to the hit element's size) are the neighbouring
-    /// surface right at a seam, whose light the rays read there.
-    static constexpr float kSeam = 0.01f;
+    /// Hits closer to the point than this times the square root of the hit element's area read a
+    /// surface near it. The field there, blended from the element's corners, does not hold how the
+    /// light changes across the element (a slot a centimetre wide beside a wall, a contact, a
+    /// corner): those reads take the neighbouring points' gathered light, solved with theirs
+    /// (solve_near_reads).
+    static constexpr float kNear = 1.0f;
 
     const GatherScene& scene_;
     const Elements& elements_;
@@ -664,9 +666,9 @@ void gather_field(const Gatherer& gatherer, const Elements& elements, const std:
         const std::size_t v = std::size_t(vertices[t]);
         const std::size_t e = std::size_t(element_at[v]);
         Rgb L, light;
-        float seam_share = 0.0f;
+        float near_share = 0.0f;
         if (gatherer.radiance_at(int32_t(v), e, polygon_centre(e), approach[v], uint32_t(place[v]), L, light,
-                                 seam_share, direct.light[v], false, {nullptr, &statistics[v], nullptr, &moved[v]}) &&
+                                 near_share, direct.light[v], false, {nullptr, &statistics[v], nullptr, &moved[v]}) &&
             std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) {
             value[v] = L;
             light_at[v] = light;
@@ -899,14 +901,15 @@ private:
     std::vector<double> area_;
 };
 
-/// Solves the seam points' light, each linear in the field at the seam vertices (SeamReads), by
-/// Jacobi sweeps until no value changes by more than 1e-6 of the largest (at most 200 sweeps):
-/// the same as gathering those points again and again from each other's values.
+/// Solves the light of the points whose rays met surfaces near them, each linear in the field at
+/// the vertices those rays read (NearReads), by Jacobi sweeps until no value changes by more than
+/// 1e-6 of the largest (at most 200 sweeps): the same as gathering those points again and again
+/// from each other's values.
 template <typename WriteField>
-void solve_seams(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<int32_t>& points,
-                 const std::vector<int32_t>& element_at, const std::vector<SeamReads>& reads,
-                 const std::vector<uint8_t>& recorded, std::vector<Rgb>& field, std::vector<Rgb>& value,
-                 std::vector<Rgb>& light, const WriteField& write_field) {
+void solve_near_reads(const Elements& elements, const std::vector<Rgb>& emitted, const std::vector<int32_t>& points,
+                      const std::vector<int32_t>& element_at, const std::vector<NearReads>& reads,
+                      const std::vector<uint8_t>& recorded, std::vector<Rgb>& field, std::vector<Rgb>& value,
+                      std::vector<Rgb>& light, const WriteField& write_field) {
     for (int sweep = 0; sweep < 200; ++sweep) {
         double change = 0.0, largest = 0.0;
         for (std::size_t i = 0; i < points.size(); ++i) {
@@ -1147,13 +1150,14 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     PhaseMeter meter(visibility, back_sides);
     cost.other.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-    // The first pass reads the interpolated solution, or the field gathered from it. Points whose rays met a seam read
-    // the other surface's light right at it, where interpolation is least like the light (a room's corner is half lit
-    // by the walls' light at the corner): the second pass gathers them again from the first pass's values at the seams'
-    // vertices, keeping what they read at the seams as weights. Then the seams' light is solved: each of those points'
-    // light is linear in the field at the seam vertices, which are such points too (solve_seams). Passes alone converge
-    // slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in three quarters
-    // of its hemisphere.
+    // The first pass reads the interpolated solution, or the field gathered from it. Points whose rays met a surface
+    // near them (within the size of the element hit) read the field where it is least like the light: a room's corner
+    // is half lit by the walls' light at the corner, and a wall beside a slot a centimetre wide reads the slot's floor,
+    // whose field the solution's elements leave lit where the wall shades it. The second pass gathers those points
+    // again from the first pass's values, keeping what they read near them as weights. Then their light is solved: each
+    // is linear in the field at the vertices it read near it, which are such points too (solve_near_reads). Passes
+    // alone converge slowly where two or three surfaces meet: a room's corner sees the other two walls' corner light in
+    // three quarters of its hemisphere.
     std::vector<Rgb> field = colors.element_corner;
     const std::vector<std::size_t> near_lit = near_lit_elements(elements, emitted, runs, lights);
     CornerWedges wedges;
@@ -1197,8 +1201,8 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
     std::vector<uint8_t>& done = p.done;
     std::vector<PointStatistics>& point_statistics = p.statistics;
     std::vector<uint8_t> recorded(points.size(), 0), moved(points.size(), 0);
-    std::vector<float> seam_share(points.size(), 0.0f);
-    std::vector<SeamReads> reads(points.size());
+    std::vector<float> near_share(points.size(), 0.0f);
+    std::vector<NearReads> reads(points.size());
     std::vector<std::size_t> todo(points.size());
     for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
     auto write_field = [&](const std::vector<uint8_t>& which) {  // the field at those points' vertices
@@ -1229,7 +1233,7 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         const bool last = pass + 1 == passes;
         const Gatherer gatherer(scene, field, settings, &wedges, RayKeeping::Folded);
         const Gatherer seam_gatherer(scene, field, seam_settings, &wedges, RayKeeping::Folded);
-        parallel_rows(pass == 0 ? "gather" : "gather seams", todo.size(), 4, 0, progress, [&](std::size_t t) {
+        parallel_rows(pass == 0 ? "gather" : "gather near surfaces", todo.size(), 4, 0, progress, [&](std::size_t t) {
             const std::size_t i = todo[t];
             const std::size_t e = std::size_t(element_at[points[i]]);
             const bool direct_known = pass > 0 || field_direct.at(points[i]);
@@ -1253,12 +1257,12 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
                 light[i] = H;
                 done[i] = 1;
                 recorded[i] = last;
-                seam_share[i] = share;
+                near_share[i] = share;
             }
             return true;
         });
         // The field at gathered vertices becomes their gathered light; next, the points whose rays
-        // met a seam.
+        // met a surface near them.
         if (pass == 0) {
             for (std::size_t i = 0; i < points.size(); ++i) direct[i] = direct[direct_from[i]];
             read_shared(shared, elements, emitted, gathered, p);
@@ -1267,10 +1271,10 @@ GatherCost final_gather(const Elements& elements, const std::vector<Rgb>& emitte
         meter.add_to(pass == 0 ? cost.points : cost.seams);
         todo.clear();
         for (std::size_t i = 0; i < points.size(); ++i)
-            if (done[i] && seam_share[i] > 0.0f) todo.push_back(i);
+            if (done[i] && near_share[i] > 0.0f) todo.push_back(i);
     }
-    solve_seams(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
-    read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the seams
+    solve_near_reads(elements, emitted, points, element_at, reads, recorded, field, value, light, write_field);
+    read_shared(shared, elements, emitted, gathered, p);  // from the records' light after the solve
     meter.add_to(cost.seams);
     bake_buried_corners_as_cycles(Gatherer(scene, field, settings, &wedges, RayKeeping::Folded), gathered, moved,
                                   approach, place, progress, p);

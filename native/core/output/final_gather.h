@@ -106,7 +106,7 @@ struct GatherKept {
 /// the solved one (read flat on emitters' back sides, which have no corner colours), `world` the
 /// world's light, direct at each point like the lamps'. `light_colors` (interpolated light arriving,
 /// BakeResult::light_colors) takes the gathered direct + indirect light at the same corners. Progress phases "gather",
-/// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather seams" for
+/// one unit per gathered vertex (after "gather field" with `field_rays`), then "gather near surfaces" for
 /// each later pass; throws Cancelled. `statistics`, if given, takes what the gather found at the
 /// output corners besides their colours (gather_statistics.h). `kept` holds what earlier gathers over
 /// the same elements found: the indirect and probe rays' hits and each source's direct light at each

@@ -12,9 +12,9 @@ namespace {
 
 using Source = PointReads::Source;
 
-/// A term's weights while one point is folded, in double precision; `seam`: its weight read right at seams.
+/// A term's weights while one point is folded, in double precision; `near`: its weight read near the point.
 struct Folded {
-    double sum = 0.0, difference = 0.0, seam = 0.0;
+    double sum = 0.0, difference = 0.0, near = 0.0;
     glm::dvec2 rotation{0.0}, translation{0.0};
 };
 
@@ -42,7 +42,7 @@ public:
         return folded_[std::size_t(at)];
     }
     /// The terms folded, into `reads` (with their gradients' weights if `gradients`), and the field
-    /// slots read right at seams, in order, their weights divided by the rays; ready for the next point.
+    /// slots read near the point, in order, their weights divided by the rays; ready for the next point.
     void finish(PointReads& reads, bool gradients) {
         for (int32_t* at : touched_) *at = -1;
         touched_.clear();
@@ -51,10 +51,10 @@ public:
             const Folded& f = folded_[t];
             reads.terms.push_back({read_[t], float(f.sum), float(f.difference)});
             if (gradients) reads.gradients.push_back({glm::vec2(f.rotation), glm::vec2(f.translation)});
-            if (f.seam != 0.0)
-                reads.seam_slots.emplace_back(int32_t(reads.terms.back().index()), f.seam / double(reads.rays));
+            if (f.near != 0.0)
+                reads.near_slots.emplace_back(int32_t(reads.terms.back().index()), f.near / double(reads.rays));
         }
-        std::sort(reads.seam_slots.begin(), reads.seam_slots.end());
+        std::sort(reads.near_slots.begin(), reads.near_slots.end());
     }
 
 private:
@@ -94,10 +94,10 @@ bool may_emit(const Elements& elements, const std::vector<Rgb>& emitted, std::si
 }
 
 /// Adds one front hit's reads: the field's corner slots and, with `bubbles`, its bubble (or a back
-/// side's solved value), the wedge tables' values, less its emission; the corner slots read right at
-/// a seam (`seam`) also as such (a bubble is 0 there, and the seams' solve does not write it).
+/// side's solved value), the wedge tables' values, less its emission; the corner slots read near the
+/// point (`near`) also as such (a bubble is 0 there, and the near reads' solve does not write it).
 void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, const CornerWedges* wedges,
-                    const hr::Visibility::Hit& hit, bool seam, bool bubbles, const RayWeights& ray, TermIndex& index) {
+                    const hr::Visibility::Hit& hit, bool near, bool bubbles, const RayWeights& ray, TermIndex& index) {
     const std::size_t h = std::size_t(hit.patch);
     if (elements.is_back(h)) {
         add(index, Source::BackRadiance, h, 1.0, ray);
@@ -105,7 +105,7 @@ void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, c
         const std::array<double, 4> w = corner_weights(elements, h, hit.u, hit.v);
         for (int k = 0; k < elements.corner_count(h); ++k) {
             Folded& term = add(index, Source::FieldSlot, 4 * h + std::size_t(k), w[std::size_t(k)], ray);
-            if (seam) term.seam += w[std::size_t(k)];
+            if (near) term.near += w[std::size_t(k)];
         }
         if (bubbles)
             add(index, Source::FieldSlot, bubble_slot(elements, h), element_bubble(elements, h, hit.u, hit.v), ray);
@@ -123,7 +123,7 @@ void fold_front_hit(const Elements& elements, const std::vector<Rgb>& emitted, c
 
 std::size_t PointReads::bytes() const {
     return terms.capacity() * sizeof(Term) + gradients.capacity() * sizeof(GradientTerm) +
-           back_distances.capacity() * sizeof(float) + seam_slots.capacity() * sizeof(seam_slots[0]) +
+           back_distances.capacity() * sizeof(float) + near_slots.capacity() * sizeof(near_slots[0]) +
            sizeof(PointReads);
 }
 
@@ -144,11 +144,11 @@ PointReads fold_reads(const Elements& elements, const std::vector<Rgb>& emitted,
             reads.back_distances.push_back(hit.distance);
             continue;
         }
-        const bool seam = hit.distance < grid.seam * std::sqrt(elements.area[std::size_t(hit.patch)]);
-        reads.at_seam += seam;
+        const bool near = hit.distance < grid.near * std::sqrt(elements.area[std::size_t(hit.patch)]);
+        reads.near_hits += near;
         const RayWeights ray{half_sign(int(i), grid.grid), grid.gradients ? &gradient.rotation[i] : nullptr,
                              grid.gradients ? &gradient.translation[i] : nullptr};
-        fold_front_hit(elements, emitted, wedges, hit, seam && !elements.is_back(std::size_t(hit.patch)), grid.bubbles,
+        fold_front_hit(elements, emitted, wedges, hit, near && !elements.is_back(std::size_t(hit.patch)), grid.bubbles,
                        ray, index);
     }
     index.finish(reads, grid.gradients);
@@ -193,7 +193,7 @@ ReadSums evaluate(const PointReads& reads, const ReadValues& values) {
         }
     }
     out.rest = out.sum;
-    for (const auto& [slot, weight] : reads.seam_slots) out.rest -= (weight * double(reads.rays)) * values.field[slot];
+    for (const auto& [slot, weight] : reads.near_slots) out.rest -= (weight * double(reads.rays)) * values.field[slot];
     return out;
 }
 

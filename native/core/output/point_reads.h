@@ -9,7 +9,7 @@
 /// its solved value. Each read is linear in those values with weights that the geometry alone
 /// sets, and so are the other things the gather takes from the same rays: the halves' difference
 /// and the probe field's read (gather_statistics.h), the irradiance gradients (irradiance_cache.h),
-/// and the share of the light read right at seams (final_gather.cpp's SeamReads). Precomputed light
+/// and the share of the light read near the point (final_gather.cpp's NearReads). Precomputed light
 /// transport as a linear operator (Sloan, Kautz and Snyder 2002; per-light layers, UberBake,
 /// Rodriguez et al. 2020): the rays' hits are summed into one weight per value read, far fewer than
 /// rays where many rays land on one element (docs/benchmarks.md), and a re-bake or a light group's
@@ -57,10 +57,10 @@ struct PointReads {
     std::vector<Term> terms;
     std::vector<GradientTerm> gradients;  ///< per term (empty: folded without the gradients)
     std::vector<float> back_distances;    ///< how far the rays that met a back face went
-    int rays = 0, at_seam = 0;            ///< rays cast; those that met another surface right at a seam
-    /// The field slots the rays met right at seams, each once with its summed weight over the rays
-    /// divided by their count (final_gather.cpp's SeamReads): the rays' sum less these is the rest.
-    std::vector<std::pair<int32_t, double>> seam_slots;
+    int rays = 0, near_hits = 0;          ///< rays cast; those that met a surface near the point (RayGrid)
+    /// The field slots the rays met near the point, each once with its summed weight over the rays
+    /// divided by their count (final_gather.cpp's NearReads): the rays' sum less these is the rest.
+    std::vector<std::pair<int32_t, double>> near_slots;
 
     std::size_t bytes() const;
 };
@@ -71,11 +71,11 @@ struct RayHit {
     bool front = false;
 };
 
-/// How the rays were cast and what counts as a seam: `grid` x `grid` stratified rays; a hit closer
-/// than `seam` times the square root of its element's area is right at a seam.
+/// How the rays were cast and what counts as near: `grid` x `grid` stratified rays; a hit closer
+/// than `near` times the square root of its element's area is near the point.
 struct RayGrid {
     int grid = 1;
-    float seam = 0.0f;
+    float near = 0.0f;
     bool gradients = false;  ///< fold the gradients' weights too
     bool bubbles = false;    ///< read the elements' bubbles too (the field carries them: corner_blend.h)
 };
@@ -96,7 +96,7 @@ struct ReadValues {
 };
 
 /// The sums a point's reads give (each over its rays, not yet divided by their count); `rest`: the
-/// sum less what the rays read of the field right at seams.
+/// sum less what the rays read of the field near the point.
 struct ReadSums {
     Rgb sum{0.0}, rest{0.0}, difference{0.0}, probe{0.0};
     PlaneGradients gradients;  ///< of the mean (the weights hold the division), in the rays' tangent frame

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -158,7 +159,7 @@ bool Visibility::clear(const Vec3& from, const Vec3& to, float begin, float end)
 }
 
 bool Visibility::clear_from_surface(const Vec3& from, const Vec3& normal, const Vec3& to) const {
-    const Vec3 origin = from + lift() * normal;
+    const Vec3 origin = lifted(from, normal);
     const Vec3 d = to - origin;
     const float length = glm::length(d);
     if (!(length > 0.0f)) return true;
@@ -176,13 +177,49 @@ bool Visibility::escapes(const Vec3& origin, const Vec3& direction) const {
 }
 
 bool Visibility::escapes_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
-    return escapes(from + lift() * normal, direction);
+    return escapes(lifted(from, normal), direction);
 }
 
 Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, float t_near) const {
     rays_.fetch_add(1, std::memory_order_relaxed);
+    return intersect(from, direction, t_near, out_of_scene(), nullptr);
+}
+
+Visibility::Hit Visibility::first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
+    rays_.fetch_add(1, std::memory_order_relaxed);
+    const float lift = this->lift();
+    float t_near = 0.01f * lift;
+    for (int own = 0; own < 4; ++own) {
+        Vec3 crossing;
+        const Hit hit = intersect(from, direction, t_near, out_of_scene(), &crossing);
+        if (hit.patch < 0) return hit;
+        const float area = glm::length(crossing);  // twice the hit triangle's: none for a degenerate one
+        const bool parallel = area > 0.0f && std::abs(glm::dot(crossing, normal)) >= kParallel * area;
+        if (!parallel || std::abs(hit.distance * glm::dot(direction, normal)) >= lift) return hit;
+        t_near = std::nextafter(hit.distance, out_of_scene());  // its own plane
+    }
+    return Hit{};
+}
+
+Vec3 Visibility::lifted(const Vec3& from, const Vec3& normal) const {
+    const float lift = this->lift();
+    float t_near = 0.01f * lift;  // past the point's own plane, whose hits the float positions scatter
+    for (int parallel = 0; parallel < 4; ++parallel) {
+        Vec3 crossing;
+        const Hit above = intersect(from, normal, t_near, lift, &crossing);
+        if (above.patch < 0) break;
+        const float area = glm::length(crossing);  // twice the hit triangle's: none for a degenerate one
+        if (area > 0.0f && std::abs(glm::dot(crossing, normal)) < kParallel * area)
+            return from + (0.5f * above.distance) * normal;
+        t_near = std::nextafter(above.distance, lift);  // a plane beside the point's
+    }
+    return from + lift * normal;
+}
+
+Visibility::Hit Visibility::intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far,
+                                      Vec3* normal) const {
     RTCRayHit query{};
-    query.ray = make_ray(from, direction, t_near, out_of_scene());
+    query.ray = make_ray(from, direction, t_near, t_far);
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
 #if RADIOSITY_EMBREE_MAJOR == 4
@@ -200,6 +237,7 @@ Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, f
         hit.distance = query.ray.tfar;
         hit.u = query.hit.u;
         hit.v = query.hit.v;
+        if (normal != nullptr) *normal = Vec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z);
     }
     return hit;
 }

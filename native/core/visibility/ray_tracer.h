@@ -34,18 +34,24 @@ public:
     /// The same for the part of the segment between fractions `begin` and `end` of its length.
     bool clear(const Vec3& from, const Vec3& to, float begin, float end) const;
     /// True when nothing lies between `from`, a point on a surface facing unit `normal`, and `to`, a
-    /// point on a lamp. The ray leaves 1e-6 of the scene size above `from` and ends as clear()'s:
-    /// a face a fraction of a millimetre from the point (its neighbour at a corner) still hides
-    /// the lamp, as in Cycles, where clear()'s gap of 1e-4 of the segment would pass it.
+    /// point on a lamp. The ray leaves from lifted(from, normal) and ends as clear()'s: a face a
+    /// fraction of a millimetre from the point (its neighbour at a corner) still hides the lamp, as
+    /// in Cycles, where clear()'s gap of 1e-4 of the segment would pass it.
     bool clear_from_surface(const Vec3& from, const Vec3& normal, const Vec3& to) const;
+    /// Where rays from `from`, a point on a surface facing unit `normal`, leave: 1e-6 of the scene
+    /// size above it, or halfway to a surface that crosses that hair (a face running on under
+    /// another at a shallow angle: a level's floor strip under the foot of a ramp), so that they
+    /// meet the other's back, as Cycles' rays, which leave the point itself, do. Surfaces parallel
+    /// to the point's (normals within 0.8 degrees: its own plane, a face lying on it) do not count.
+    Vec3 lifted(const Vec3& from, const Vec3& normal) const;
     /// True when nothing lies along `direction` (unit) from `from` out of the scene.
     bool clear_towards(const Vec3& from, const Vec3& direction) const;
     /// The same from `origin`, a point already lifted off its surface (as the World's and the
     /// final gather's rays leave theirs): without clear_towards' gap at the start, so that a wall
     /// beside the point, nearer than the gap, still hides the sky behind it.
     bool escapes(const Vec3& origin, const Vec3& direction) const;
-    /// The same from `from`, a point on a surface facing unit `normal`: the ray leaves 1e-6 of the
-    /// scene size above it, as clear_from_surface's do.
+    /// The same from `from`, a point on a surface facing unit `normal`: the ray leaves from
+    /// lifted(from, normal), as clear_from_surface's do.
     bool escapes_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const;
 
     /// The first patch along `direction` (unit) from `from`, beyond `t_near`: its index (-1 for
@@ -58,22 +64,36 @@ public:
         float u = 0.0f, v = 0.0f;
     };
     Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
+    /// first_hit from `from`, a point on a surface facing unit `normal`, itself, as Cycles' rays
+    /// leave the point and skip its own face: faces parallel to its own (normals within 0.8
+    /// degrees) met within lift() of its plane, which round-off may make the ray meet, do not
+    /// count, and the ray starts a hundredth of lift() along, past most of them. A surface a hair
+    /// from the point (the floor beside a wall's foot) is seen from there, not from a lift above.
+    Hit first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const;
     /// The gap left at a segment's ends (1e-6 of the scene size).
     float gap() const { return gap_; }
-    /// The rays traced so far (clear, clear_towards, escapes and first_hit: one each), from every
+    /// The rays traced so far (clear, clear_towards, escapes, first_hit and first_hit_from_surface:
+    /// one each; lifted()'s probe is not counted), from every
     /// thread.
     std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:
-    /// How far above a surface point its rays leave (clear_from_surface, escapes_from_surface), and
-    /// how far clear_towards' rays skip at their start: the gap, at least a micrometre.
+    /// How far above a surface point its shadow rays leave at most (lifted()), how far off its
+    /// plane first_hit_from_surface's rays skip faces parallel to it, and how far clear_towards'
+    /// rays skip at their start: the gap, at least a micrometre.
     float lift() const { return std::max(gap_, 1e-6f); }
     /// A ray length that leaves the scene from any point in it.
     float out_of_scene() const { return 2.0f * scene_size_ + 1.0f; }
+    /// first_hit up to `t_far`, and the hit face's geometric normal (not unit) in `normal` if given.
+    Hit intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far, Vec3* normal) const;
     bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    /// Normals closer than this cosine (0.8 degrees) are parallel for lifted() and
+    /// first_hit_from_surface().
+    static constexpr float kParallel = 0.9999f;
+
     float gap_ = 0.0f, scene_size_ = 0.0f;
     mutable std::atomic<std::uint64_t> rays_{0};
 };

@@ -21,4 +21,11 @@ std::vector<std::array<int32_t, 4>> blocking_corners(const Elements& elements);
 bool unhidden(const hr::Visibility& visibility, const Elements& elements, const Vec3& from, const Vec3& to,
               const Vec3& to_normal, float scene_size);
 
+/// unhidden from `origin`, where a surface point facing unit `normal` sends its rays
+/// (hr::Visibility::lifted): the ray starts there, without unhidden's gap, so that a surface right
+/// beside the point (the other face of an acute corner) hides what lies behind it. Hits in the
+/// point's own plane do not count either.
+bool unhidden_from_surface(const hr::Visibility& visibility, const Elements& elements, const Vec3& origin,
+                           const Vec3& normal, const Vec3& to, const Vec3& to_normal, float scene_size);
+
 }  // namespace radiosity::detail

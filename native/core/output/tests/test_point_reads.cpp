@@ -1,6 +1,6 @@
 /// @file test_point_reads.cpp
 /// @brief A point's rays folded into weights (point_reads.h) against the same rays read hit by hit:
-/// the sum, the halves' difference, the probe field's read, the rest beside the seams and the
+/// the sum, the halves' difference, the probe field's read, the rest beside the near reads and the
 /// gradients, on elements with wedge tables and an emitter, for any values read.
 #include "output/point_reads.h"
 
@@ -52,8 +52,8 @@ HitByHit read_hit_by_hit(const Elements& elements, const ReadValues& values, con
         out.sum += seen[i];
         out.difference += half_sign(int(i), grid.grid) * seen[i];
         out.probe += blend_corners(elements, h, &(*values.probe)[4 * h], hit.u, hit.v);
-        const bool seam = hit.distance < grid.seam * std::sqrt(elements.area[h]);
-        out.rest += seam ? wedge - values.emitted[h] : seen[i];
+        const bool near = hit.distance < grid.near * std::sqrt(elements.area[h]);
+        out.rest += near ? wedge - values.emitted[h] : seen[i];
     }
     const GradientWeights weights = gradient_weights(grid.grid, inverse);
     for (std::size_t i = 0; i < hits.size(); ++i)
@@ -86,7 +86,7 @@ TEST(PointReads, FoldedReadsGiveWhatTheHitsGiveForAnyValues) {
 
     const RayGrid grid{48, 0.05f, true};
     std::vector<RayHit> hits(std::size_t(grid.grid * grid.grid));
-    // Rays on few elements (as a point's rays land), some at a seam, some on backs, some missing.
+    // Rays on few elements (as a point's rays land), some near the point, some on backs, some missing.
     for (RayHit& ray : hits) {
         const double pick = uniform(random);
         if (pick < 0.05) continue;  // missed
@@ -110,7 +110,7 @@ TEST(PointReads, FoldedReadsGiveWhatTheHitsGiveForAnyValues) {
         const HitByHit truth = read_hit_by_hit(elements, values, grid, hits);
         const double rays = double(hits.size());
         ASSERT_GT(truth.wedges.r, 0.01 * rays);                // the tables are read
-        ASSERT_GT(glm::length(truth.sum - truth.rest), 0.01);  // and the seams
+        ASSERT_GT(glm::length(truth.sum - truth.rest), 0.01);  // and the near reads
         expect_near(folded.sum, truth.sum, rays, "sum");
         expect_near(folded.rest, truth.rest, rays, "rest");
         expect_near(folded.difference, truth.difference, rays, "difference");
