@@ -20,9 +20,13 @@
 /// The point x is the corner's element vertex moved a hair into its element: an input corner where
 /// Cycles bakes it, 1e-4 of the vertex's largest coordinate (at least 1e-4) along its approach
 /// (corner_approach.h); other vertices 1e-3 of the way to the element's centre, at most 1e-4 of the
-/// scene's size. Rays leave from 1e-6 of the scene's size above it, so they neither slip through a
-/// seam nor hit the neighbouring face at distance 0, yet leave from about where Cycles' rays do
-/// (next to a block's foot the point is only 4.5e-5 above the floor). A point inside other geometry (more than half its
+/// scene's size. Its gather and probe rays leave x itself, as Cycles' do, and skip only faces
+/// parallel to its own within 1e-6 of the scene's size of its plane (its own face, which round-off
+/// may make them meet: hr::Visibility::first_hit_from_surface); next to a block's foot the point is
+/// only 4.5e-5 above the floor, and rays leaving 1e-6 of the scene above it read the floor 3% too
+/// bright. Its shadow and World rays leave 1e-6 of the scene above it, or halfway to a surface
+/// crossing that hair (hr::Visibility::lifted), so that they do not slip through the surface beside
+/// it. A point inside other geometry (more than half its
 /// rays hit a back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then towards its
 /// polygon's centre (1, 2 and 4 times as far as its element's centre: the element may lie wholly under what buries it,
 /// as a floor cut along a wall's footprint), so that the field and the seams, which read it, take its light from the
@@ -41,7 +45,7 @@
 /// (a ceiling beside a panel hung just under it, a floor 5 cm under a lamp) keep their solved light
 /// instead, their corners scaled to it: that light changes on the scale of the source's distance,
 /// which their corners do not resolve. So does every later writing of gathered light into the field
-/// (the output points after the first pass, the seams' solve).
+/// (the output points after the first pass, the solve of the reads near them).
 ///
 /// Bubbles (lamp_bubbles.h): a blend of corners holds only light that is linear over an element.
 /// Each element of the gathered field carries a bubble (zero on its edges) that makes its mean of
@@ -53,13 +57,14 @@
 /// element corners at such vertices keep a table of the light around them by direction, which the
 /// rays landing in their elements read (corner_wedges.h).
 ///
-/// Seams: a point next to a seam (a room's edge, a block's footprint) sends half its rays into the
-/// other surface right at the seam, where the interpolated solution is least like the light. So
-/// the vertices on seams are gathered too (those that hold no input corner with four times the
-/// field's rays: many of them are read at once); the points whose rays met a seam are gathered
-/// again from those values, keeping what those rays read there as weights on the seam vertices'
-/// light, and that light is then solved (each seam point's light is linear in its neighbours'), as
-/// if they were gathered from each other until nothing changed.
+/// Near reads: a point next to a seam (a room's edge, a block's footprint) sends half its rays into
+/// the other surface right at the seam, and a wall beside a slot a centimetre wide into the slot's
+/// floor, where the interpolated solution is least like the light. So the vertices on seams are
+/// gathered too (those that hold no input corner with four times the field's rays: many of them are
+/// read at once); the points whose rays met a surface within the size of the element hit are
+/// gathered again from the first pass's values, keeping what those rays read there as weights on
+/// the vertices' light, and that light is then solved (each such point's light is linear in its
+/// neighbours'), as if they were gathered from each other until nothing changed.
 ///
 /// Emitters: the emitting elements of one polygon side are one group, whose exact unoccluded light
 /// at a point is one contour integral over its outline (emitter_groups.h); the group's share of the
