@@ -188,7 +188,7 @@ Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, f
 Visibility::Hit Visibility::first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
     rays_.fetch_add(1, std::memory_order_relaxed);
     const float lift = this->lift();
-    float t_near = 0.01f * lift;
+    float t_near = 0.0f;
     for (int own = 0; own < 4; ++own) {
         Vec3 crossing;
         const Hit hit = intersect(from, direction, t_near, out_of_scene(), &crossing);

@@ -66,9 +66,10 @@ public:
     Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
     /// first_hit from `from`, a point on a surface facing unit `normal`, itself, as Cycles' rays
     /// leave the point and skip its own face: faces parallel to its own (normals within 0.8
-    /// degrees) met within lift() of its plane, which round-off may make the ray meet, do not
-    /// count, and the ray starts a hundredth of lift() along, past most of them. A surface a hair
-    /// from the point (the floor beside a wall's foot) is seen from there, not from a lift above.
+    /// degrees) met within lift() of its plane, which round-off makes about half the rays meet at
+    /// once, do not count (the ray is traced again past them). A surface a hair from the point
+    /// (the floor beside a wall's foot) is seen from there, not from a lift above, and a face whose
+    /// plane passes through the point is met at once.
     Hit first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const;
     /// The gap left at a segment's ends (1e-6 of the scene size).
     float gap() const { return gap_; }
