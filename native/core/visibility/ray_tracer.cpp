@@ -81,6 +81,48 @@ const Embree& embree() {
     return api;
 }
 
+#if RADIOSITY_EMBREE_MAJOR == 4
+using QueryContext = RTCRayQueryContext;
+constexpr RTCSceneFlags kFilterInQueries = RTC_SCENE_FLAG_FILTER_FUNCTION_IN_ARGUMENTS;
+#else
+using QueryContext = RTCIntersectContext;
+constexpr RTCSceneFlags kFilterInQueries = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
+#endif
+
+/// Normals closer than this cosine (0.8 degrees) are parallel.
+constexpr float kParallel = 0.9999f;
+
+/// Whether a face of geometric normal `face` (not unit; zero for a degenerate one) is parallel to a
+/// point's surface of unit normal `normal`.
+bool parallel(const Vec3& face, const Vec3& normal) {
+    const float area = glm::length(face);  // twice the triangle's
+    return area > 0.0f && std::abs(glm::dot(face, normal)) >= kParallel * area;
+}
+
+/// A query from a point on a surface: Embree's context first (the filter gets its address), then
+/// the point's unit normal and how far off its plane a parallel face is its own.
+struct SurfaceQuery {
+    QueryContext context;
+    Vec3 normal;
+    float tolerance;
+};
+
+/// Embree's filter for a SurfaceQuery: a hit on a face parallel to the point's own, within
+/// `tolerance` of its plane, is its own face met by round-off and does not count (Embree passes the hit's
+/// distance as the ray's tfar).
+void skip_own_face(const RTCFilterFunctionNArguments* args) {
+    const auto* query = reinterpret_cast<const SurfaceQuery*>(args->context);
+    const unsigned int n = args->N;
+    for (unsigned int i = 0; i < n; ++i) {
+        if (args->valid[i] == 0) continue;
+        const Vec3 face(RTCHitN_Ng_x(args->hit, n, i), RTCHitN_Ng_y(args->hit, n, i), RTCHitN_Ng_z(args->hit, n, i));
+        const Vec3 direction(RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i),
+                             RTCRayN_dir_z(args->ray, n, i));
+        const float height = RTCRayN_tfar(args->ray, n, i) * glm::dot(direction, query->normal);
+        if (parallel(face, query->normal) && std::abs(height) < query->tolerance) args->valid[i] = 0;
+    }
+}
+
 /// A ray from `origin` along `direction` between t_near and t_far (flags, time and id 0).
 RTCRay make_ray(const Vec3& origin, const Vec3& direction, float t_near, float t_far) {
     RTCRay ray{};
@@ -106,7 +148,8 @@ Visibility::Visibility(const std::vector<Vec3>& vertices, const std::vector<std:
     if (!device_) throw std::runtime_error("Embree: no device");
     scene_ = e.newScene(device_);
     e.setSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-    e.setSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // watertight: rays along a shared edge must not slip through
+    // Watertight: rays along a shared edge must not slip through; filters per query (skip_own_face).
+    e.setSceneFlags(scene_, RTCSceneFlags(RTC_SCENE_FLAG_ROBUST | kFilterInQueries));
     RTCGeometry quads = e.newGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
     auto* position = static_cast<float*>(e.setNewGeometryBuffer(quads, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                 3 * sizeof(float), vertices.size()));
@@ -185,51 +228,49 @@ Visibility::Hit Visibility::first_hit(const Vec3& from, const Vec3& direction, f
     return intersect(from, direction, t_near, out_of_scene(), nullptr);
 }
 
+float Visibility::own_face_tolerance(const Vec3& from) const {
+    return gap_ + 1e-6f * std::max({std::abs(from.x), std::abs(from.y), std::abs(from.z)});
+}
+
 Visibility::Hit Visibility::first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const {
     rays_.fetch_add(1, std::memory_order_relaxed);
-    const float lift = this->lift();
-    float t_near = 0.0f;
-    for (int own = 0; own < 4; ++own) {
-        Vec3 crossing;
-        const Hit hit = intersect(from, direction, t_near, out_of_scene(), &crossing);
-        if (hit.patch < 0) return hit;
-        const float area = glm::length(crossing);  // twice the hit triangle's: none for a degenerate one
-        const bool parallel = area > 0.0f && std::abs(glm::dot(crossing, normal)) >= kParallel * area;
-        if (!parallel || std::abs(hit.distance * glm::dot(direction, normal)) >= lift) return hit;
-        t_near = std::nextafter(hit.distance, out_of_scene());  // its own plane
-    }
-    return Hit{};
+    return intersect(from, direction, 0.0f, out_of_scene(), nullptr, &normal);
 }
 
 Vec3 Visibility::lifted(const Vec3& from, const Vec3& normal) const {
     const float lift = this->lift();
     float t_near = 0.01f * lift;  // past the point's own plane, whose hits the float positions scatter
-    for (int parallel = 0; parallel < 4; ++parallel) {
+    for (int beside = 0; beside < 4; ++beside) {
         Vec3 crossing;
         const Hit above = intersect(from, normal, t_near, lift, &crossing);
         if (above.patch < 0) break;
-        const float area = glm::length(crossing);  // twice the hit triangle's: none for a degenerate one
-        if (area > 0.0f && std::abs(glm::dot(crossing, normal)) < kParallel * area)
-            return from + (0.5f * above.distance) * normal;
+        if (glm::length(crossing) > 0.0f && !parallel(crossing, normal)) return from + (0.5f * above.distance) * normal;
         t_near = std::nextafter(above.distance, lift);  // a plane beside the point's
     }
     return from + lift * normal;
 }
 
-Visibility::Hit Visibility::intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far,
-                                      Vec3* normal) const {
+Visibility::Hit Visibility::intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far, Vec3* normal,
+                                      const Vec3* own_face) const {
     RTCRayHit query{};
     query.ray = make_ray(from, direction, t_near, t_far);
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    SurfaceQuery surface{{}, own_face != nullptr ? *own_face : Vec3(0.0f), own_face_tolerance(from)};
 #if RADIOSITY_EMBREE_MAJOR == 4
     RTCIntersectArguments arguments;  // the defaults, as for occluded()
     rtcInitIntersectArguments(&arguments);
+    if (own_face != nullptr) {
+        rtcInitRayQueryContext(&surface.context);
+        arguments.context = &surface.context;
+        arguments.filter = skip_own_face;
+        arguments.flags = RTCRayQueryFlags(arguments.flags | RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER);
+    }
     embree().intersect1(scene_, &query, &arguments);
 #else
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    embree().intersect1(scene_, &context, &query);
+    rtcInitIntersectContext(&surface.context);
+    if (own_face != nullptr) surface.context.filter = skip_own_face;
+    embree().intersect1(scene_, &surface.context, &query);
 #endif
     Hit hit;
     if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {

@@ -66,8 +66,8 @@ public:
     Hit first_hit(const Vec3& from, const Vec3& direction, float t_near) const;
     /// first_hit from `from`, a point on a surface facing unit `normal`, itself, as Cycles' rays
     /// leave the point and skip its own face: faces parallel to its own (normals within 0.8
-    /// degrees) met within lift() of its plane, which round-off makes about half the rays meet at
-    /// once, do not count (the ray is traced again past them). A surface a hair from the point
+    /// degrees) met within own_face_tolerance() of its plane, which round-off makes about half the
+    /// rays meet at once, do not count (Embree's filter skips them). A surface a hair from the point
     /// (the floor beside a wall's foot) is seen from there, not from a lift above, and a face whose
     /// plane passes through the point is met at once.
     Hit first_hit_from_surface(const Vec3& from, const Vec3& normal, const Vec3& direction) const;
@@ -79,22 +79,24 @@ public:
     std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:
-    /// How far above a surface point its shadow rays leave at most (lifted()), how far off its
-    /// plane first_hit_from_surface's rays skip faces parallel to it, and how far clear_towards'
-    /// rays skip at their start: the gap, at least a micrometre.
-    float lift() const { return std::max(gap_, 1e-6f); }
+    /// How far above a surface point its shadow rays leave at most (lifted()), and how far
+    /// clear_towards' rays skip at their start: the gap, 1e-6 of the scene's size, so that a scene
+    /// scaled by any factor bakes the same.
+    float lift() const { return gap_; }
+    /// How far off the plane of `from`, a surface point, first_hit_from_surface's rays skip faces
+    /// parallel to it: the gap, and 1e-6 of its largest coordinate (about 17 times round-off's).
+    float own_face_tolerance(const Vec3& from) const;
     /// A ray length that leaves the scene from any point in it.
     float out_of_scene() const { return 2.0f * scene_size_ + 1.0f; }
-    /// first_hit up to `t_far`, and the hit face's geometric normal (not unit) in `normal` if given.
-    Hit intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far, Vec3* normal) const;
+    /// first_hit up to `t_far`, and the hit face's geometric normal (not unit) in `normal` if given;
+    /// with `own_face`, the unit normal of the surface `from` lies on, faces parallel to it within
+    /// own_face_tolerance(from) of its plane do not count (Embree skips them as it traverses).
+    Hit intersect(const Vec3& from, const Vec3& direction, float t_near, float t_far, Vec3* normal,
+                  const Vec3* own_face = nullptr) const;
     bool occluded(const Vec3& origin, const Vec3& direction, float t_near, float t_far) const;
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
-    /// Normals closer than this cosine (0.8 degrees) are parallel for lifted() and
-    /// first_hit_from_surface().
-    static constexpr float kParallel = 0.9999f;
-
     float gap_ = 0.0f, scene_size_ = 0.0f;
     mutable std::atomic<std::uint64_t> rays_{0};
 };
