@@ -21,22 +21,22 @@
 /// Cycles bakes it, 1e-4 of the vertex's largest coordinate (at least 1e-4) along its approach
 /// (corner_approach.h); other vertices 1e-3 of the way to the element's centre, at most 1e-4 of the
 /// scene's size. Its gather and probe rays leave x itself, as Cycles' do, and skip only faces
-/// parallel to its own within 1e-6 of the scene's size of its plane (its own face, which round-off
-/// may make them meet: hr::Visibility::first_hit_from_surface); next to a block's foot the point is
-/// only 4.5e-5 above the floor, and rays leaving 1e-6 of the scene above it read the floor 3% too
-/// bright. Its shadow and World rays leave 1e-6 of the scene above it, or halfway to a surface
-/// crossing that hair (hr::Visibility::lifted), so that they do not slip through the surface beside
-/// it. A point inside other geometry (more than half its
-/// rays hit a back face nearer than its element's size) is moved further in (0.1 and 0.5 of the way), then towards its
-/// polygon's centre (1, 2 and 4 times as far as its element's centre: the element may lie wholly under what buries it,
-/// as a floor cut along a wall's footprint), so that the field and the seams, which read it, take its light from the
-/// visible side. An output corner whose own point is buried (a face running on into a beam or under a wall, as in
-/// game levels built from overlapping brushes) then shows what Cycles bakes at that point: its rays meet back faces,
-/// which bring nothing, and its shadow rays find the lamps hidden. Every element vertex holding an input corner is
-/// gathered once, so each face's corner has its own value: where a block stands on a floor, the floor's faces around
-/// the block's corner see it differently (as Cycles bakes them). Where a smooth surface bends, its faces' corners share
-/// their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded), so faces meeting at a
-/// vertex use the same rays and differ only where the light does, and the result does not depend on threads.
+/// parallel to its own within 1e-6 of the scene's size (and of its largest coordinate) of its plane
+/// (its own face, which round-off makes them meet: hr::Visibility::first_hit_from_surface); next to a block's foot the
+/// point is only 4.5e-5 above the floor, and rays leaving 1e-6 of the scene above it read the floor 3% too bright. Its
+/// shadow and World rays leave 1e-6 of the scene above it, or halfway to a surface crossing that hair
+/// (hr::Visibility::lifted), so that they do not slip through the surface beside it. A point inside other geometry
+/// (more than half its rays hit a back face nearer than its element's size) is moved further in (0.1 and 0.5 of the
+/// way), then towards its polygon's centre (1, 2 and 4 times as far as its element's centre: the element may lie wholly
+/// under what buries it, as a floor cut along a wall's footprint), so that the field and the seams, which read it, take
+/// its light from the visible side. An output corner whose own point is buried (a face running on into a beam or under
+/// a wall, as in game levels built from overlapping brushes) then shows what Cycles bakes at that point: its rays meet
+/// back faces, which bring nothing, and its shadow rays find the lamps hidden. Every element vertex holding an input
+/// corner is gathered once, so each face's corner has its own value: where a block stands on a floor, the floor's faces
+/// around the block's corner see it differently (as Cycles bakes them). Where a smooth surface bends, its faces'
+/// corners share their mean (replace_corners, interpolation.h). Seeds come from the vertex's position (welded), so
+/// faces meeting at a vertex use the same rays and differ only where the light does, and the result does not depend on
+/// threads.
 ///
 /// The field the rays read: the solution interpolated to the elements' corners or, with
 /// `field_rays`, gathered first at every element vertex with that many rays (direct light exact at

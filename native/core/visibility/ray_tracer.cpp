@@ -256,7 +256,8 @@ Visibility::Hit Visibility::intersect(const Vec3& from, const Vec3& direction, f
     query.ray = make_ray(from, direction, t_near, t_far);
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    SurfaceQuery surface{{}, own_face != nullptr ? *own_face : Vec3(0.0f), own_face_tolerance(from)};
+    SurfaceQuery surface{
+        {}, own_face != nullptr ? *own_face : Vec3(0.0f), own_face != nullptr ? own_face_tolerance(from) : 0.0f};
 #if RADIOSITY_EMBREE_MAJOR == 4
     RTCIntersectArguments arguments;  // the defaults, as for occluded()
     rtcInitIntersectArguments(&arguments);
