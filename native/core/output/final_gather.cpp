@@ -155,11 +155,10 @@ public:
         for (int i = 0; i < count; ++i) {
             const Vec3 x = candidates[i];
             if (scene_.coincident.covered(x, e)) continue;  // buried under another face (coincident_faces.h)
-            const Vec3 origin = lifted(x, n);
             Rgb indirect(0.0);
             if (!gather_indirect(x, n, seed, to_centre, indirect, near_share, outputs)) continue;  // buried
             // The light arriving is gathered on black surfaces too: it is the light-only output.
-            if (!direct_known || i > 0) direct_light = direct(x, origin, n, seed);
+            if (!direct_known || i > 0) direct_light = direct(x, lifted(x, n), n, seed);
             if (outputs.reads != nullptr) outputs.reads->direct = direct_light;
             light = direct_light + indirect;
             out = scene_.emitted[e] + elements_.reflectance[e] * light;
@@ -183,13 +182,12 @@ public:
             out = scene_.emitted[e];
             return true;
         }
-        const Vec3 origin = lifted(x, n);
         const uint32_t seed = mix_seed(place, 0x5EEDU);
         Rgb indirect(0.0);
         float near_share = 0.0f;
         if (gather_indirect(x, n, seed, glm::length(elements_.centre[e] - x), indirect, near_share, {}, true))
             return false;
-        light = direct(x, origin, n, seed) + indirect;
+        light = direct(x, lifted(x, n), n, seed) + indirect;
         out = scene_.emitted[e] + elements_.reflectance[e] * light;
         return true;
     }

@@ -74,8 +74,7 @@ public:
     /// The gap left at a segment's ends (1e-6 of the scene size).
     float gap() const { return gap_; }
     /// The rays traced so far (clear, clear_towards, escapes, first_hit and first_hit_from_surface:
-    /// one each; lifted()'s probe is not counted), from every
-    /// thread.
+    /// one each; lifted()'s probe is not counted), from every thread.
     std::uint64_t rays_traced() const { return rays_.load(std::memory_order_relaxed); }
 
 private:
