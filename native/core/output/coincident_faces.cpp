@@ -57,20 +57,35 @@ CoincidentFaces::CoincidentFaces(const Elements& elements, float tolerance)
 
 bool CoincidentFaces::covered(const Vec3& x, std::size_t e) const {
     const std::vector<int32_t>& partners = partners_[e];
-    return std::any_of(partners.begin(), partners.end(), [&](int32_t h) { return inside(x, std::size_t(h)); });
+    if (partners.empty()) return false;
+    // A quarter of a float's spacing at x's largest coordinate.
+    const double on_edge = 0x1p-25 * double(std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)}));
+    return std::any_of(partners.begin(), partners.end(), [&](int32_t h) {
+        glm::dvec3 inwards(0.0);
+        if (!inside(glm::dvec3(x), std::size_t(h), on_edge, &inwards)) return false;
+        if (inwards == glm::dvec3(0.0)) return true;
+        // On an edge of h: covered where e goes on across that edge, so that h lies on e there (an
+        // overlap), not where e ends at it (a neighbour in the plane).
+        const glm::dvec3 across = glm::dvec3(x) + 2.0 * on_edge * glm::normalize(inwards);
+        return inside(across, std::size_t(h), 0.0) && inside(across, e, 0.0);
+    });
 }
 
 std::size_t CoincidentFaces::covered_elements() const {
     return std::size_t(std::count_if(partners_.begin(), partners_.end(), [](const auto& p) { return !p.empty(); }));
 }
 
-bool CoincidentFaces::inside(const Vec3& x, std::size_t h) const {
-    const glm::dvec3 n(elements_.normal[h]), p(x);
+bool CoincidentFaces::inside(const glm::dvec3& p, std::size_t h, double on_edge, glm::dvec3* inwards) const {
+    const glm::dvec3 n(elements_.normal[h]);
     const int count = elements_.corner_count(h);
     for (int k = 0; k < count; ++k) {
         const glm::dvec3 a(elements_.vertices[std::size_t(elements_.corners[h][k])]);
         const glm::dvec3 b(elements_.vertices[std::size_t(elements_.corners[h][(k + 1) % count])]);
-        if (!(glm::dot(glm::cross(b - a, p - a), n) > 0.0)) return false;
+        const double edge = glm::length(b - a);
+        const double side = glm::dot(glm::cross(b - a, p - a), n);
+        if (side > 0.0) continue;
+        if (!(side > -on_edge * edge) || inwards == nullptr) return false;
+        *inwards += glm::cross(n, b - a) / edge;
     }
     return true;
 }

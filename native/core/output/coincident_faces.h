@@ -20,16 +20,23 @@ public:
     /// 0.8 degrees) in planes no farther apart than `tolerance` metres, whose bounding boxes meet.
     CoincidentFaces(const Elements& elements, float tolerance);
 
-    /// Whether `x`, a point of element `e`, lies inside an element of another polygon that lies on
-    /// `e`: on the inner side of each of its edges, however near, as Cycles' rays meet a face at
-    /// any point within it (a sliver's corner baked 2e-6 m inside the face under it bakes black).
+    /// Whether `x`, a point of element `e`, lies inside or on the edge of an element of another
+    /// polygon that lies on `e`, as Cycles' rays meet a face at any point within it (a sliver's
+    /// corner baked 2e-6 m inside the face under it bakes black) and at its edges (a corner baked
+    /// towards its face's centre along the other face's edge bakes black: Embree's test is closed).
+    /// On an edge means on its line in float arithmetic: within a quarter of a float's spacing at
+    /// x (a sliver's corner baked 1.3 spacings outside the face beside it is lit in Cycles). There
+    /// it is covered only where `e` goes on across the edge (the two overlap), not where `e` ends
+    /// at it (neighbours in one plane).
     bool covered(const Vec3& x, std::size_t e) const;
 
     /// Elements with at least one such partner.
     std::size_t covered_elements() const;
 
 private:
-    bool inside(const Vec3& x, std::size_t h) const;
+    /// Whether `p` lies in element `h`, on the inner side of each edge line; with `inwards`, also
+    /// on or within `on_edge` metres outside some of them, whose inward normals are added there.
+    bool inside(const glm::dvec3& p, std::size_t h, double on_edge, glm::dvec3* inwards = nullptr) const;
 
     const Elements& elements_;
     std::vector<std::vector<int32_t>> partners_;  ///< per element, sorted; empty for most

@@ -584,6 +584,61 @@ TEST(FinalGather, ASliverUnderTheFootOfARampIsBlackAsInCycles) {
         }
 }
 
+TEST(FinalGather, ACornerBakedOnTheEdgeOfAFaceLyingOnItsOwnIsBlackAsInCycles) {
+    // Ceiling faces of a game level (OpenArena's q3dm6ish, where they lie in it; facing down), two
+    // brushes' faces overlapping in one plane, a lamp under them. At the vertex (-12.192, -6.5024)
+    // the triangle (-10.16, -7.3152) (-12.192, -6.5024) (-12.192, -5.6896) overlaps the other brush's
+    // triangle ending at y = -6.5024 in a wedge, and its centroid lies on that line: Cycles bakes
+    // the corner on the other face's edge, its rays meet that face at distance 0 there, and it bakes
+    // the corner black (4 seeds of 1,024 samples in the level: 0), as every other corner at that
+    // vertex, which lies inside a face of the other brush.
+    const Rgb rho(0.5);
+    const Vec3 a(-8.9408f, -7.3152f, 1.6256f), b(-12.192f, -5.6896f, 1.6256f), c(-8.9408f, -5.6896f, 1.6256f),
+        d(-10.16f, -7.3152f, 1.6256f), e(-12.192f, -6.5024f, 1.6256f), f(-10.9728f, -7.3152f, 1.6256f),
+        g(-12.192f, -7.3152f, 1.6256f), h(-8.9408f, -6.5024f, 1.6256f), k(-8.9408f, -10.5664f, 1.6256f);
+    test::SceneArrays s;
+    s.add_polygon({a, b, c}, rho, Rgb(0.0));  // the first brush's ceiling
+    s.add_polygon({a, d, b}, rho, Rgb(0.0));
+    s.add_polygon({d, e, b}, rho, Rgb(0.0));  // the triangle whose corner at e lies on the edge
+    s.add_polygon({d, f, e}, rho, Rgb(0.0));
+    s.add_polygon({f, g, e}, rho, Rgb(0.0));
+    s.add_polygon({g, h, k}, rho, Rgb(0.0));  // the second brush's, overlapping it
+    s.add_polygon({g, e, h}, rho, Rgb(0.0));
+    BakeSettings settings = gather_settings(3.9f, true);
+    settings.final_gather.field_rays = 64;
+    const BakeResult r = bake(s.input(), with_lamp(settings, Vec3(-10.5f, -6.6f, 0.0f), Rgb(100.0)));
+    const std::vector<std::size_t> at_e = corners_at(s, e);
+    ASSERT_EQ(at_e.size(), 4u);
+    for (const std::size_t corner : at_e) EXPECT_EQ(max_channel(r.colors.input_corner[corner]), 0.0) << corner;
+}
+
+TEST(FinalGather, SliversSideBySideInOnePlaneKeepTheirLight) {
+    // Floor faces of a game level (OpenArena's q3dm6ish, where they lie in it): two slivers 9 and 13
+    // mm wide at one end and 4 m long beside two larger triangles, meeting edge to edge, none lying
+    // on another, under a lamp. Where a sliver's corner is baked, a hair towards its centroid, it is
+    // within round-off of its neighbours' edges, but no neighbour lies on it there: every corner takes
+    // the lamp's exact light (a flat floor reflects none onto itself).
+    const Rgb rho(0.5);
+    const Vec3 a(-16.256f, -10.5664f, -4.4704f), b(-15.4432f, -11.3792f, -4.4704f), c(-16.256f, -10.556875f, -4.4704f),
+        d(-13.0048f, -8.07085f, -4.4704f), e(-15.433675f, -11.3792f, -4.4704f), f(-12.9921f, -8.1153f, -4.4704f);
+    test::SceneArrays s;
+    s.add_polygon({a, b, c}, rho, Rgb(0.0));
+    s.add_polygon({b, d, c}, rho, Rgb(0.0));
+    s.add_polygon({b, e, d}, rho, Rgb(0.0));  // the slivers
+    s.add_polygon({e, f, d}, rho, Rgb(0.0));
+    BakeSettings settings = gather_settings(3.9f, true);
+    settings.final_gather.field_rays = 64;
+    settings.hard_edge_angle = 0.0f;  // every face its own corner colours, as Cycles bakes flat faces
+    const Vec3 lamp(-14.5f, -9.8f, -2.0f);
+    const BakeResult r = bake(s.input(), with_lamp(settings, lamp, Rgb(100.0)));
+    for (std::size_t corner = 0; corner < s.corner_vertices.size(); ++corner) {
+        const float* p = &s.positions[3 * s.corner_vertices[corner]];
+        const glm::dvec3 to_lamp = glm::dvec3(lamp - Vec3(p[0], p[1], p[2]));
+        const double direct = 100.0 * to_lamp.z / std::pow(glm::length(to_lamp), 3.0);
+        EXPECT_NEAR(r.colors.input_corner[corner].g / (0.5 * direct / M_PI), 1.0, 2e-3) << corner;
+    }
+}
+
 TEST(FinalGather, ACornerOfTwoWallsUnderTheSkyHoldsTheInfiniteWedgesLight) {
     // Two walls 20 m wide and 100 m long meeting at an edge of angle a (90, 45 and 20 degrees), open
     // to a uniform sky. Seen from a point on their edge the other wall hides the directions behind
