@@ -126,7 +126,8 @@ def main():
                  100 * clean, mean_ratio, 100 * median), flush=True)
         print("seconds:", {k: round(v, 2) for k, v in summary.get("seconds", {}).items()}, flush=True)
         estimate = summary.get("error_estimate") or {}
-        print("the summary's estimate: %s %s per corner" % (estimate.get("relation"), estimate.get("typical")),
+        print("the summary's estimate: %s %s per corner (sampling %s, solution's bias %s, field's light %s)"
+              % tuple(estimate.get(k) for k in ("relation", "typical", "sampling", "solution_bias", "field_light")),
               flush=True)
         saved[quality] = baked
     if args.save:
