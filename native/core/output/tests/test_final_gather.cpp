@@ -123,6 +123,25 @@ void add_block(test::SceneArrays& s, const Vec3& lo, const Vec3& hi, const Rgb& 
     s.add_quad({x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}, rho);  // +x
 }
 
+/// The light (irradiance / pi) from a point lamp of intensity I at `lamp`, unshadowed, where Cycles
+/// bakes input corner `corner` of the triangles `s` holds (3 corners each): a hair from its vertex
+/// towards the triangle's centroid (detail::bake_offset for a scene of size `scene_size`).
+double lamp_light_where_baked(const test::SceneArrays& s, std::size_t corner, const Vec3& lamp, double I,
+                              float scene_size = 1.0f) {
+    Vec3 triangle[3], centroid(0.0f);
+    for (std::size_t j = 0; j < 3; ++j) {
+        const float* p = &s.positions[3 * s.corner_vertices[corner - corner % 3 + j]];
+        triangle[j] = Vec3(p[0], p[1], p[2]);
+        centroid += triangle[j] / 3.0f;
+    }
+    const Vec3& vertex = triangle[corner % 3];
+    const Vec3 x = vertex + detail::bake_offset(vertex, scene_size) * glm::normalize(centroid - vertex);
+    const glm::dvec3 n =
+        glm::normalize(glm::cross(glm::dvec3(triangle[1] - triangle[0]), glm::dvec3(triangle[2] - triangle[0])));
+    const glm::dvec3 to_lamp = glm::dvec3(lamp - x);
+    return I * glm::dot(n, to_lamp) / std::pow(glm::length(to_lamp), 3.0) / M_PI;
+}
+
 TEST(FinalGather, FloorCornersAtABlocksFootSeeWhatCyclesSeesThere) {
     // A black block on the quadrant x < 0 < y stands on a floor of three quads around the origin,
     // under a unit square emitter over the origin. The light is discontinuous at the block's foot
@@ -568,19 +587,8 @@ TEST(FinalGather, ASliverUnderTheFootOfARampIsBlackAsInCycles) {
             }
             // The ramp and the slope beyond its foot see nothing that reflects: the lamp's exact light
             // where Cycles bakes the corner.
-            Vec3 triangle[3], centroid(0.0f);
-            for (int j = 0; j < 3; ++j) {
-                const float* p = &s.positions[3 * s.corner_vertices[3 * polygon + std::size_t(j)]];
-                triangle[j] = Vec3(p[0], p[1], p[2]);
-                centroid += triangle[j] / 3.0f;
-            }
-            const Vec3 x =
-                triangle[k] + detail::bake_offset(triangle[k], scene_size) * glm::normalize(centroid - triangle[k]);
-            const glm::dvec3 n = glm::normalize(
-                glm::cross(glm::dvec3(triangle[1] - triangle[0]), glm::dvec3(triangle[2] - triangle[0])));
-            const glm::dvec3 to_lamp = glm::dvec3(lamp - x);
-            const double direct = 100.0 * glm::dot(n, to_lamp) / std::pow(glm::length(to_lamp), 3.0);
-            EXPECT_NEAR(baked.g / (0.8 * direct / M_PI), 1.0, 2e-3) << corner;
+            EXPECT_NEAR(baked.g / (0.8 * lamp_light_where_baked(s, corner, lamp, 100.0, scene_size)), 1.0, 2e-3)
+                << corner;
         }
 }
 
@@ -613,29 +621,35 @@ TEST(FinalGather, ACornerBakedOnTheEdgeOfAFaceLyingOnItsOwnIsBlackAsInCycles) {
 }
 
 TEST(FinalGather, SliversSideBySideInOnePlaneKeepTheirLight) {
-    // Floor faces of a game level (OpenArena's q3dm6ish, where they lie in it): two slivers 9 and 13
-    // mm wide at one end and 4 m long beside two larger triangles, meeting edge to edge, none lying
-    // on another, under a lamp. Where a sliver's corner is baked, a hair towards its centroid, it is
-    // within round-off of its neighbours' edges, but no neighbour lies on it there: every corner takes
-    // the lamp's exact light (a flat floor reflects none onto itself).
+    // Faces of a game level (OpenArena's q3dm6ish, where they lie in it), each a sliver 1 to 16 mm
+    // wide between two faces of its plane (the wall's within 0.7 degrees of it), meeting them edge
+    // to edge, none lying on another: a wall's and a floor's, each under a lamp. A sliver's corner is
+    // baked a hair towards its centroid, within round-off of its neighbours' edges, but no neighbour
+    // lies on it there, and Cycles bakes it lit (the wall's: 0.024 in the level, its neighbours
+    // 0.032): every corner takes the lamp's exact light (nothing else reflects here).
     const Rgb rho(0.5);
-    const Vec3 a(-16.256f, -10.5664f, -4.4704f), b(-15.4432f, -11.3792f, -4.4704f), c(-16.256f, -10.556875f, -4.4704f),
-        d(-13.0048f, -8.07085f, -4.4704f), e(-15.433675f, -11.3792f, -4.4704f), f(-12.9921f, -8.1153f, -4.4704f);
-    test::SceneArrays s;
-    s.add_polygon({a, b, c}, rho, Rgb(0.0));
-    s.add_polygon({b, d, c}, rho, Rgb(0.0));
-    s.add_polygon({b, e, d}, rho, Rgb(0.0));  // the slivers
-    s.add_polygon({e, f, d}, rho, Rgb(0.0));
-    BakeSettings settings = gather_settings(3.9f, true);
-    settings.final_gather.field_rays = 64;
-    settings.hard_edge_angle = 0.0f;  // every face its own corner colours, as Cycles bakes flat faces
-    const Vec3 lamp(-14.5f, -9.8f, -2.0f);
-    const BakeResult r = bake(s.input(), with_lamp(settings, lamp, Rgb(100.0)));
-    for (std::size_t corner = 0; corner < s.corner_vertices.size(); ++corner) {
-        const float* p = &s.positions[3 * s.corner_vertices[corner]];
-        const glm::dvec3 to_lamp = glm::dvec3(lamp - Vec3(p[0], p[1], p[2]));
-        const double direct = 100.0 * to_lamp.z / std::pow(glm::length(to_lamp), 3.0);
-        EXPECT_NEAR(r.colors.input_corner[corner].g / (0.5 * direct / M_PI), 1.0, 2e-3) << corner;
+    const Vec3 wall_a(-12.9921f, -8.1153f, -4.4704f), wall_b(-15.433675f, -11.3792f, -4.4704f),
+        wall_c(-12.9921f, -8.1153f, -4.064f), wall_d(-13.001625f, -8.128f, -4.064f),
+        wall_e(-15.433675f, -11.3792f, -4.064f);
+    const Vec3 floor_a(-3.25755f, 17.88795f, -4.8768f), floor_b(-6.5024f, 15.0241f, -4.8768f),
+        floor_c(-3.2512f, 16.2433f, -4.8768f), floor_d(-3.267075f, 17.8816f, -4.8768f),
+        floor_e(-6.5024f, 15.351125f, -4.8768f);
+    const std::vector<std::pair<std::vector<std::vector<Vec3>>, Vec3>> cases = {
+        {{{wall_a, wall_b, wall_c}, {wall_b, wall_d, wall_c}, {wall_b, wall_e, wall_d}}, Vec3(-15.0f, -9.15f, -3.5f)},
+        {{{floor_a, floor_b, floor_c}, {floor_a, floor_d, floor_b}, {floor_d, floor_e, floor_b}},
+         Vec3(-4.5f, 16.0f, -3.0f)},
+    };
+    for (const auto& [faces, lamp] : cases) {
+        test::SceneArrays s;
+        for (const std::vector<Vec3>& face : faces) s.add_polygon(face, rho, Rgb(0.0));
+        BakeSettings settings = gather_settings(3.9f, true);
+        settings.final_gather.field_rays = 64;
+        settings.hard_edge_angle = 0.0f;  // every face its own corner colours, as Cycles bakes flat faces
+        const BakeResult r = bake(s.input(), with_lamp(settings, lamp, Rgb(100.0)));
+        for (std::size_t corner = 0; corner < 9; ++corner)
+            EXPECT_NEAR(r.colors.input_corner[corner].g / (0.5 * lamp_light_where_baked(s, corner, lamp, 100.0)), 1.0,
+                        2e-3)
+                << corner;
     }
 }
 
