@@ -35,6 +35,24 @@ bool split(const Piece& piece, const DVec3& on, const DVec3& side, double tolera
     return true;
 }
 
+/// Whether an end of segment `s` lies on the boundary of `piece` within `tolerance`, inside one of
+/// its edges (not at a corner): a wall ending on the border of a piece beside it, whose edge then
+/// runs on past the wall's end without a vertex there.
+bool ends_on_edge(const Piece& piece, const CutSegment& s, double tolerance) {
+    const std::size_t n = piece.points.size();
+    for (const DVec3& end : {s.a, s.b})
+        for (std::size_t k = 0; k < n; ++k) {
+            const DVec3 a = piece.points[k], b = piece.points[(k + 1) % n];
+            const double length = glm::length(b - a);
+            if (!(length > 0.0)) continue;
+            const DVec3 u = (b - a) / length;
+            const double along = glm::dot(end - a, u);
+            if (along > tolerance && along < length - tolerance && glm::length((end - a) - along * u) <= tolerance)
+                return true;
+        }
+    return false;
+}
+
 }  // namespace
 
 std::vector<Piece> cut_polygon(const std::vector<DVec3>& p, const DVec3& normal, const CutSegment* begin,
@@ -55,7 +73,7 @@ std::vector<Piece> cut_polygon(const std::vector<DVec3>& p, const DVec3& normal,
         for (const Piece& piece : pieces) {
             DVec3 a = s->a, b = s->b;
             Piece left, right;
-            if (clip_segment(piece.points, normal, tolerance, a, b) &&
+            if ((clip_segment(piece.points, normal, tolerance, a, b) || ends_on_edge(piece, *s, tolerance)) &&
                 split(piece, s->a, side, tolerance, left, right)) {
                 next.push_back(std::move(left));
                 next.push_back(std::move(right));
