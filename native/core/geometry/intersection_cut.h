@@ -20,7 +20,10 @@ struct Piece {
 
 /// Splits the polygon (p, unit normal) along the line of each segment in [begin, end), through the
 /// pieces that segment crosses (only those: a wall ending mid-floor cuts the floor from its edge to
-/// the first piece border beyond the wall's end). Concave polygons are first cut into triangles.
+/// the first piece border beyond the wall's end) and those with one of its ends inside an edge (a
+/// block's foot: the cut along one side runs on past the corner, and the piece beyond that line is
+/// split where the next side ends on it, so the corner is a vertex of every piece around it).
+/// Concave polygons are first cut into triangles.
 std::vector<Piece> cut_polygon(const std::vector<DVec3>& p, const DVec3& normal, const CutSegment* begin,
                                const CutSegment* end, double tolerance);
 
