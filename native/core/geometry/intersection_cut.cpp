@@ -35,6 +35,15 @@ bool split(const Piece& piece, const DVec3& on, const DVec3& side, double tolera
     return true;
 }
 
+/// Where a point lies against the line through `a` along unit `u`: how far along it, how far off it.
+struct LinePosition {
+    double along, off;
+};
+LinePosition line_position(const DVec3& p, const DVec3& a, const DVec3& u) {
+    const double along = glm::dot(p - a, u);
+    return {along, glm::length((p - a) - along * u)};
+}
+
 /// Whether an end of segment `s` lies on the boundary of `piece` within `tolerance`, inside one of
 /// its edges (not at a corner): a wall ending on the border of a piece beside it, whose edge then
 /// runs on past the wall's end without a vertex there.
@@ -45,10 +54,8 @@ bool ends_on_edge(const Piece& piece, const CutSegment& s, double tolerance) {
             const DVec3 a = piece.points[k], b = piece.points[(k + 1) % n];
             const double length = glm::length(b - a);
             if (!(length > 0.0)) continue;
-            const DVec3 u = (b - a) / length;
-            const double along = glm::dot(end - a, u);
-            if (along > tolerance && along < length - tolerance && glm::length((end - a) - along * u) <= tolerance)
-                return true;
+            const LinePosition at = line_position(end, a, (b - a) / length);
+            if (at.along > tolerance && at.along < length - tolerance && at.off <= tolerance) return true;
         }
     return false;
 }
@@ -96,9 +103,9 @@ void mark_cut_edges(Elements& elements, std::size_t first, const CutSegment* beg
             for (const CutSegment* s = begin; s != end; ++s) {
                 const double length = glm::length(s->b - s->a);
                 const DVec3 u = (s->b - s->a) / length;
-                auto off_line = [&](const DVec3& v) { return glm::length((v - s->a) - glm::dot(v - s->a, u) * u); };
-                const double middle = glm::dot(0.5 * (v0 + v1) - s->a, u);
-                if (off_line(v0) <= tolerance && off_line(v1) <= tolerance && middle > 0.0 && middle < length) {
+                const double middle = line_position(0.5 * (v0 + v1), s->a, u).along;
+                if (line_position(v0, s->a, u).off <= tolerance && line_position(v1, s->a, u).off <= tolerance &&
+                    middle > 0.0 && middle < length) {
                     elements.cut_edges[e] |= uint8_t(1u << k);
                     break;
                 }
