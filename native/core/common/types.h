@@ -20,6 +20,10 @@ using Rgb = glm::dvec3;  ///< radiance or reflectance per RGB channel (double: s
 /// The largest of the three channels.
 inline double max_channel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
+/// Unit normals whose dot product reaches this (within 0.8 degrees) are parallel: faces of one
+/// plane, however round-off turned their float normals (a ray's own face, coincident faces).
+constexpr float kParallelCosine = 0.9999f;
+
 /// What a long-running phase reports. `radiance` is the current per-element solution when the
 /// phase has one (solvers), null otherwise; it is only valid during the callback.
 struct Progress {

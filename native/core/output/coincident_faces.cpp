@@ -14,9 +14,6 @@
 namespace radiosity::detail {
 namespace {
 
-/// Normals closer than this cosine face the same way (0.8 degrees).
-constexpr float kSameWay = 0.9999f;
-
 Box element_box(const Elements& elements, std::size_t e, float tolerance) {
     Box box{glm::vec3(elements.vertices[std::size_t(elements.corners[e][0])]), glm::vec3(0.0f)};
     box.hi = box.lo;
@@ -45,7 +42,8 @@ CoincidentFaces::CoincidentFaces(const Elements& elements, float tolerance)
     BoxTree(boxes).visit_overlapping_pairs([&](int32_t box_a, int32_t box_b) {
         const int32_t a = element[std::size_t(box_a)], b = element[std::size_t(box_b)];
         const std::size_t i = std::size_t(a), j = std::size_t(b);
-        if (elements.polygon[i] == elements.polygon[j] || glm::dot(elements.normal[i], elements.normal[j]) < kSameWay ||
+        if (elements.polygon[i] == elements.polygon[j] ||
+            glm::dot(elements.normal[i], elements.normal[j]) < kParallelCosine ||
             std::abs(glm::dot(elements.centre[j] - elements.centre[i], elements.normal[i])) > tolerance)
             return;
         const std::lock_guard<std::mutex> lock(found);

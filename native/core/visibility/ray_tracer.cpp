@@ -89,14 +89,11 @@ using QueryContext = RTCIntersectContext;
 constexpr RTCSceneFlags kFilterInQueries = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
 #endif
 
-/// Normals closer than this cosine (0.8 degrees) are parallel.
-constexpr float kParallel = 0.9999f;
-
 /// Whether a face of geometric normal `face` (not unit; zero for a degenerate one) is parallel to a
 /// point's surface of unit normal `normal`.
 bool parallel(const Vec3& face, const Vec3& normal) {
     const float area = glm::length(face);  // twice the triangle's
-    return area > 0.0f && std::abs(glm::dot(face, normal)) >= kParallel * area;
+    return area > 0.0f && std::abs(glm::dot(face, normal)) >= kParallelCosine * area;
 }
 
 /// A query from a point on a surface: Embree's context first (the filter gets its address), then

@@ -22,7 +22,7 @@ namespace {
 /// Whether `hit`, at `at`, lies in the plane through `point` facing unit `normal`.
 bool in_plane(const Elements& elements, const hr::Visibility::Hit& hit, const Vec3& at, const Vec3& point,
               const Vec3& normal, float tolerance) {
-    return std::abs(glm::dot(elements.normal[hit.patch], normal)) > 0.9999f &&
+    return std::abs(glm::dot(elements.normal[hit.patch], normal)) > kParallelCosine &&
            std::abs(glm::dot(at - point, normal)) < tolerance;
 }
 
